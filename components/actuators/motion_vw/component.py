@@ -1,0 +1,40 @@
+from typing import Literal
+
+from morsec.component import Actuator, ComponentProperties, DataField, service
+
+
+class MotionVW(Actuator):
+    """Linear and angular velocity in the robot's frame (v forward, w about z), re-applied every tick.
+    Kinematic, as MORSE: the robot's body velocity is set; ground robots keep the vertical velocity,
+    roll and pitch rates that gravity and contacts give them."""
+
+    short_descr = "Forward speed and yaw rate of the robot"
+    builder_name = "MotionVW"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        ControlType: Literal["Velocity", "Position"] = "Velocity"
+
+    data = (
+        DataField("v", 0.0, "float", "forward velocity, robot frame, m/s"),
+        DataField("w", 0.0, "float", "angular velocity about z, rad/s"),
+    )
+
+    def default_action(self):
+        v, w = float(self.local_data["v"]), float(self.local_data["w"])
+        self.robot.apply_speed(self.properties.ControlType, [v, 0.0, 0.0], [0.0, 0.0, w], self.frequency)
+
+    @service
+    def set_speed(self, v: float, w: float):
+        """Set v (m/s) and w (rad/s)."""
+        self.local_data["v"] = float(v)
+        self.local_data["w"] = float(w)
+
+    @service
+    def stop(self):
+        """Set both speeds to 0."""
+        self.local_data["v"] = 0.0
+        self.local_data["w"] = 0.0
+
+
+COMPONENT = MotionVW

@@ -1,0 +1,49 @@
+import numpy as np
+
+from morsec.component import Actuator, DataField, service
+from morsec.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
+
+
+class Teleport(Actuator):
+    """Moves the robot so that this actuator's frame is at the commanded world pose, every tick
+    (dynamics of the robot are suspended: its velocity is zeroed)."""
+
+    short_descr = "Place the robot at a pose"
+    builder_name = "Teleport"
+    frequency = 60.0
+    data = (
+        DataField("x", 0.0, "float", "x of the actuator, world frame, m (default: initial pose)"),
+        DataField("y", 0.0, "float", "y, m"),
+        DataField("z", 0.0, "float", "z, m"),
+        DataField("roll", 0.0, "float", "rotation about x, rad"),
+        DataField("pitch", 0.0, "float", "rotation about y, rad"),
+        DataField("yaw", 0.0, "float", "rotation about z, rad"),
+    )
+
+    def start(self):
+        x, y, z = self.position()
+        roll, pitch, yaw = self.euler()
+        self.local_data.update(x=x, y=y, z=z, roll=roll, pitch=pitch, yaw=yaw)
+
+    def default_action(self):
+        d = self.local_data
+        target_rot = quat_to_matrix(euler_to_quat(float(d["roll"]), float(d["pitch"]), float(d["yaw"])))
+        target_pos = np.array([float(d["x"]), float(d["y"]), float(d["z"])])
+        self.robot.place_frame(self.body_id, target_pos, target_rot)
+
+    @service
+    def translate(self, x: float, y: float = 0.0, z: float = 0.0):
+        """Move by (x, y, z) metres, world frame, relative to the current command."""
+        self.local_data["x"] = float(self.local_data["x"]) + float(x)
+        self.local_data["y"] = float(self.local_data["y"]) + float(y)
+        self.local_data["z"] = float(self.local_data["z"]) + float(z)
+
+    @service
+    def rotate(self, roll: float, pitch: float = 0.0, yaw: float = 0.0):
+        """Rotate by (roll, pitch, yaw) radians, relative to the current command."""
+        self.local_data["roll"] = float(self.local_data["roll"]) + float(roll)
+        self.local_data["pitch"] = float(self.local_data["pitch"]) + float(pitch)
+        self.local_data["yaw"] = float(self.local_data["yaw"]) + float(yaw)
+
+
+COMPONENT = Teleport

@@ -1,0 +1,26 @@
+from morsec.component import DataField, Sensor
+
+
+class Pose(Sensor):
+    """World position and orientation of the sensor itself (not of the robot): mount it where you want
+    the pose read. On an ATRV, `translate: [0, 0, -0.1]` reads the ground pose."""
+
+    short_descr = "Position and orientation of the sensor, world frame"
+    builder_name = "Pose"
+    frequency = 60.0
+    data = (
+        DataField("x", 0.0, "float", "x coordinate of the sensor, world frame, m"),
+        DataField("y", 0.0, "float", "y coordinate of the sensor, world frame, m"),
+        DataField("z", 0.0, "float", "z coordinate of the sensor, world frame, m"),
+        DataField("yaw", 0.0, "float", "rotation about z, rad"),
+        DataField("pitch", 0.0, "float", "rotation about y, rad"),
+        DataField("roll", 0.0, "float", "rotation about x, rad"),
+    )
+
+    def default_action(self):
+        x, y, z = self.position()
+        roll, pitch, yaw = self.euler()
+        self.local_data.update(x=x, y=y, z=z, yaw=yaw, pitch=pitch, roll=roll)
+
+
+COMPONENT = Pose

@@ -1,0 +1,199 @@
+"""`morsec build`: the resolved IR -> a build folder, written whole or not at all.
+
+    scene.xml        MJCF that MuJoCo compiles without warnings
+    robots/*.urdf    one per robot, xacro-expanded
+    middleware.json  streams, services, ports
+    manifest.json    the fully-resolved scene, component classes, versions and content hashes
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import shutil
+import tempfile
+from pathlib import Path
+
+import mujoco
+
+from morsec import __version__
+from morsec.catalogue import Catalogue, level_class, load_catalogue
+from morsec.compiler.middleware import middleware_config
+from morsec.compiler.mjcf import render_scene
+from morsec.compiler.urdf import expand_xacro, read_urdf
+from morsec.errors import SceneError
+from morsec.scene.loader import load_scene
+from morsec.scene.naming import join
+
+MANIFEST = "manifest.json"
+FORMAT_VERSION = 1
+
+
+def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
+    source = Path(source)
+    cat = catalogue or load_catalogue(source.parent)
+    scene = load_scene(source, cat)
+    files = compile_scene(scene, cat)
+    write_build(files, Path(out_dir))
+    return Path(out_dir)
+
+
+def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
+    """Everything the build folder will hold, as {relative path: text}; nothing is written here."""
+    components = component_entries(scene, cat)
+    loop_frequency = loop_rate(scene, components)
+    files: dict[str, str] = {}
+    trees = {}
+    robots = []
+    for robot in scene.robots:
+        cls = cat.get("robots", robot.type)
+        urdf = expand_xacro(cls.folder / cls.xacro, {"name": robot.name})
+        path = f"robots/{robot.name}.urdf"
+        files[path] = urdf
+        trees[robot.name] = read_urdf(urdf, f"{cls.folder / cls.xacro}")
+        robots.append({"name": robot.name, "type": robot.type, "class": class_ref(cls), "urdf": path,
+                       "free": not (robot.physics_type == "static" or cls.static)})
+    xml = render_scene(scene, cat, trees, loop_frequency)
+    check_mjcf(xml, scene)
+    files["scene.xml"] = xml
+    files["middleware.json"] = dump(middleware_config(scene, components))
+    ir = scene.model_dump(mode="json")
+    manifest = {
+        "format": FORMAT_VERSION,
+        "morsec": __version__,
+        "mujoco": mujoco.__version__,
+        "loop": {"frequency": loop_frequency, "physics_substeps": scene.environment.time.physics_substeps,
+                 "timestep": 1.0 / (loop_frequency * scene.environment.time.physics_substeps)},
+        "scene": ir,
+        "scene_sha256": sha256(dump(ir)),
+        "robots": robots,
+        "components": components,
+        "files": {name: sha256(text) for name, text in sorted(files.items())},
+    }
+    files[MANIFEST] = dump(manifest)
+    return files
+
+
+def component_entries(scene, cat: Catalogue) -> list[dict]:
+    devices = cat.devices()
+    entries: list[dict] = []
+
+    def visit(comp, parent_fqn: str, robot: str, path: tuple):
+        cls = devices[comp.type]
+        fqn = join(parent_fqn, comp.name)
+        impl = level_class(cls, comp.level)
+        entries.append({
+            "fqn": fqn, "robot": robot, "parent": parent_fqn, "type": comp.type, "kind": cls.kind,
+            "class": class_ref(cls), "level_class": class_ref(impl, cls), "level": comp.level,
+            "frequency": comp.frequency, "properties": comp.properties.model_dump(mode="json"),
+            "data_fields": [f.name for f in impl.fields_at(comp.level)],
+            "services": comp.services, "service_names": sorted(impl.services()),
+            "streams": [s.model_dump(mode="json") for s in comp.streams],
+            "modifiers": [m.model_dump(mode="json") for m in comp.modifiers],
+            "path": list(path),
+        })
+        for i, child in enumerate(comp.components):
+            visit(child, fqn, robot, path + ("components", i))
+
+    for r, robot in enumerate(scene.robots):
+        for i, comp in enumerate(robot.components):
+            visit(comp, robot.name, robot.name, ("robots", r, "components", i))
+    return entries
+
+
+def class_ref(cls, owner=None) -> str:
+    owner = owner or cls
+    return f"{owner.kind}s/{owner.id}:{cls.__name__}"
+
+
+def loop_rate(scene, components: list[dict]) -> float:
+    """The main loop's frequency; with auto-tune (MORSE's default) raised to the fastest component."""
+    time = scene.environment.time
+    fastest = max((c["frequency"] for c in components), default=0.0)
+    return max(time.frequency, fastest) if time.auto_tune else time.frequency
+
+
+_MJ_ELEMENT = re.compile(r"Element name '([^']*)', id \d+, line (\d+)")
+
+
+def check_mjcf(xml: str, scene) -> None:
+    """Compile with MuJoCo; a rejection is re-anchored to the scene entry that produced the element."""
+    warnings: list[str] = []
+    try:
+        model = mujoco.MjModel.from_xml_string(xml)
+    except ValueError as err:
+        raise _anchor(str(err), xml, scene) from None
+    del model, warnings
+
+
+def _anchor(message: str, xml: str, scene) -> SceneError:
+    first = message.strip().splitlines()[0].removeprefix("Error: ")
+    m = _MJ_ELEMENT.search(message)
+    owner = None
+    if m:
+        owner = m.group(1) or _enclosing_body(xml, int(m.group(2)))
+    path = _scene_path(scene, owner) if owner else None
+    smap = scene._source
+    pos = smap.find(path) if (smap and path) else None
+    line, col = pos if pos else (None, None)
+    what = f" (from {owner!r})" if owner else ""
+    return SceneError(f"MuJoCo rejected the compiled scene{what}: {first}", smap.file if smap else None, line, col)
+
+
+def _enclosing_body(xml: str, line: int) -> str | None:
+    for text in reversed(xml.splitlines()[:line]):
+        m = re.search(r'<body name="([^"]*)"', text)
+        if m:
+            return m.group(1).replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", '"').replace("&amp;", "&")
+    return None
+
+
+def _scene_path(scene, body: str) -> tuple | None:
+    for r, robot in enumerate(scene.robots):
+        if body == robot.name or body.startswith(robot.name + "/"):
+            return ("robots", r)
+        def visit(comps, prefix, path):
+            for i, c in enumerate(comps):
+                fqn = join(prefix, c.name)
+                if body == fqn:
+                    return path + ("components", i)
+                found = visit(c.components, fqn, path + ("components", i))
+                if found:
+                    return found
+            return None
+        found = visit(robot.components, robot.name, ("robots", r))
+        if found:
+            return found
+    for i, obj in enumerate(scene.objects):
+        if body == obj.name:
+            return ("objects", i)
+    return None
+
+
+def write_build(files: dict[str, str], out_dir: Path) -> None:
+    """Write all files into a fresh temporary folder, then put it in place of `out_dir`."""
+    out_dir = out_dir.resolve()
+    if out_dir.exists() and not (out_dir / MANIFEST).is_file() and any(out_dir.iterdir()):
+        raise SceneError(f"{out_dir}: refusing to replace a folder that is not a morsec build (no {MANIFEST})")
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+    try:
+        for name, text in files.items():
+            target = tmp / name
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_text(text, encoding="utf-8")
+        if out_dir.exists():
+            shutil.rmtree(out_dir)
+        tmp.rename(out_dir)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+def dump(data) -> str:
+    return json.dumps(data, indent=2, sort_keys=True) + "\n"
+
+
+def sha256(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()

@@ -1,0 +1,170 @@
+"""Render scene.xml from the resolved IR through the jinja2 templates in templates/mjcf/ and each
+component folder's own fragment (model.xml.j2, environment.xml.j2)."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import jinja2
+from markupsafe import Markup
+import numpy as np
+
+from morsec import __version__
+from morsec.catalogue import Catalogue
+from morsec.errors import SceneError
+from morsec.geometry import euler_to_quat, fmt, fmt_vec
+from morsec.resources import data_dir
+from morsec.scene.naming import join
+from morsec.compiler.urdf import Link
+
+SENSOR_WIDTH_MM = 32.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
+
+
+def template_env(cat: Catalogue) -> jinja2.Environment:
+    loader = jinja2.FileSystemLoader([str(data_dir("templates")), *[str(r) for r in cat.roots]])
+    env = jinja2.Environment(loader=loader, autoescape=True, undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=False)
+    env.filters["f"] = fmt
+    env.filters["v"] = fmt_vec
+    return env
+
+
+def render(env: jinja2.Environment, template: str, **context: Any) -> Markup:
+    """Render a template; the result is markup, inserted unescaped into the template that includes it."""
+    try:
+        return Markup(env.get_template(template).render(**context).strip("\n"))
+    except jinja2.TemplateNotFound as err:
+        raise SceneError(f"template not found: {err.name} (searched {', '.join(env.loader.searchpath)})") from None
+    except jinja2.TemplateError as err:
+        where = f"{getattr(err, 'filename', None) or template}:{getattr(err, 'lineno', '') or ''}"
+        raise SceneError(f"{where}: template error: {err}") from None
+
+
+def component_template(cat: Catalogue, cls, filename: str) -> str | None:
+    """Template path relative to the catalogue root holding the component, or None if the folder has none."""
+    folder: Path = cls.folder
+    if not (folder / filename).is_file():
+        return None
+    for root in cat.roots:
+        try:
+            return (folder / filename).relative_to(root).as_posix()
+        except ValueError:
+            continue
+    return None
+
+
+@dataclass
+class RobotBody:
+    """What the robot template needs, computed from the IR and the robot's URDF link tree."""
+
+    name: str
+    type: str
+    root: Link
+    components: list[dict]
+    free: bool
+    gravcomp: bool
+    friction: float | None
+    collides: bool
+
+
+def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequency: float) -> str:
+    env = template_env(cat)
+    environment = cat.get("environments", scene.environment.name)
+    env_context = {"scene": scene, "environment": scene.environment}
+    env_xml = render(env, component_template(cat, environment, environment.template), **env_context)
+    assets_template = component_template(cat, environment, "assets.xml.j2")
+    env_assets = render(env, assets_template, **env_context) if assets_template else ""
+
+    robots = [render(env, "mjcf/robot.xml.j2", robot=_robot_body(r, cat, env, robot_trees[r.name]))
+              for r in scene.robots]
+    objects = [_object(o, cat, env) for o in scene.objects]
+    zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
+
+    cam = scene.environment.camera
+    viewport_w, viewport_h = 800, 600
+    fov_h = 2 * math.atan(SENSOR_WIDTH_MM / 2 / cam.focal)
+    fovy = math.degrees(2 * math.atan(math.tan(fov_h / 2) * viewport_h / viewport_w))
+    substeps = scene.environment.time.physics_substeps
+    return pretty_xml(render(
+        env, "mjcf/scene.xml.j2",
+        model_name=_model_name(scene), morsec_version=__version__,
+        timestep=1.0 / (loop_frequency * substeps), gravity=scene.environment.gravity,
+        offwidth=1920, offheight=1080,
+        camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy},
+        environment=env_xml, environment_assets=env_assets,
+        robots=robots, objects=objects, zones=zones,
+    ))
+
+
+def pretty_xml(text: str) -> str:
+    """Parse (which also proves the templates produced well-formed XML) and re-indent."""
+    try:
+        root = ET.fromstring(text, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
+    except ET.ParseError as err:
+        raise SceneError(f"internal error: generated MJCF is not well-formed XML: {err}") from None
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="unicode") + "\n"
+
+
+def _model_name(scene) -> str:
+    return "morsec " + scene.environment.name
+
+
+def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
+    cls = cat.get("robots", robot.type)
+    static = robot.physics_type == "static" or cls.static
+    collides = robot.collision and robot.ghost is None and robot.physics_type != "no_collision" and cls.collision
+    _prepare_links(tree, robot)
+    tree.pos = np.asarray(robot.translate, dtype=float) + [0.0, 0.0, cls.spawn_height]
+    tree.quat = euler_to_quat(*robot.rotate)
+    components = [_component(c, robot.name, cat, env) for c in robot.components]
+    return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
+                     gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
+
+
+def _prepare_links(tree: Link, robot) -> None:
+    total = sum(link.mass for link in tree.walk())
+    scale = (robot.mass / total) if (robot.mass and total > 0) else 1.0
+    color = list(robot.color) + [1.0] if robot.color and len(robot.color) == 3 else robot.color
+    for link in tree.walk():
+        link.body = robot.name if link is tree else f"{robot.name}/{link.name}"
+        link.mass *= scale
+        link.inertia = link.inertia * scale
+        if link.joint:
+            link.joint["mjname"] = f"{robot.name}/{link.joint['name']}"
+        has_visual = any(not g.collision for g in link.geoms)
+        for g in link.geoms:
+            g.visible = g.collision and not has_visual
+            if color and (not g.collision or g.visible):
+                g.rgba = color
+            if robot.ghost is not None and (not g.collision or g.visible):
+                g.rgba = list((g.rgba or [0.5, 0.5, 0.5, 1.0])[:3]) + [robot.ghost]
+
+
+def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
+    cls = cat.devices()[comp.type]
+    fqn = join(parent_fqn, comp.name)
+    template = component_template(cat, cls, "model.xml.j2")
+    fragment = ""
+    if template:
+        fragment = render(env, template, name=fqn, properties=comp.properties, component=comp,
+                          color=comp.color)
+    return {
+        "fqn": fqn, "pos": comp.translate, "quat": euler_to_quat(*comp.rotate), "fragment": fragment,
+        "children": [_component(child, fqn, cat, env) for child in comp.components],
+    }
+
+
+def _object(obj, cat: Catalogue, env) -> str:
+    cls = cat.get("props", obj.type)
+    color = list(obj.color) + [1.0] if len(obj.color) == 3 else list(obj.color)
+    fragment = render(env, component_template(cat, cls, cls.template), name=obj.name, size=obj.size,
+                      half=[s / 2 for s in obj.size], color=color, mass=obj.mass, dynamic=obj.dynamic,
+                      properties=obj.properties)
+    return render(env, "mjcf/object.xml.j2", obj={
+        "name": obj.name, "pos": obj.translate, "quat": euler_to_quat(*obj.rotate), "dynamic": obj.dynamic,
+        "fragment": fragment})

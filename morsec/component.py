@@ -1,0 +1,193 @@
+"""What a component folder's `component.py` declares: the seed's add_data / add_property / add_level,
+as class attributes.
+
+    class Pose(Sensor):
+        \"\"\"World pose of the sensor.\"\"\"
+        short_descr = "Position and orientation of the sensor in the world frame"
+        builder_name = "Pose"
+        class Properties(ComponentProperties):
+            pass
+        data = (DataField("x", 0.0, "float", "x coordinate, world frame, m"), ...)
+
+    COMPONENT = Pose
+
+The runtime instantiates the class (or its level's class) once per scene component; `default_action`
+reads or writes `local_data` only: components never talk to a middleware.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass
+from typing import Any, Callable, ClassVar
+
+from pydantic import BaseModel, ConfigDict
+
+
+class ComponentProperties(BaseModel):
+    """Base of every component's properties: basic types only (bool, int, float, str), unknown names rejected."""
+
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
+
+
+class RobotProperties(ComponentProperties):
+    NoGravity: bool = False
+    GroundRobot: bool = False
+
+
+@dataclass(frozen=True)
+class DataField:
+    """One entry of `local_data` (add_data): on the wire in declaration order, `timestamp` first for sensors."""
+
+    name: str
+    default: Any
+    type: str
+    doc: str
+    level: str | tuple[str, ...] | None = None  # None: present at every level
+
+    def at(self, level: str | None) -> bool:
+        if self.level is None or level is None:
+            return True
+        levels = (self.level,) if isinstance(self.level, str) else self.level
+        return level in levels
+
+
+@dataclass(frozen=True)
+class Level:
+    """A level of realism (add_level): its name, the class implementing it (None: the component's own), a doc."""
+
+    name: str
+    cls: str | None
+    doc: str
+    default: bool = False
+
+
+@dataclass(frozen=True)
+class ServiceInfo:
+    name: str
+    asynchronous: bool
+    interruptible: bool | None  # None: no policy, a second call fails
+
+
+def service(fn: Callable | None = None, *, name: str | None = None):
+    """A synchronous service: its return value is the answer."""
+    def mark(f):
+        f._morsec_service = ServiceInfo(name or f.__name__, False, None)
+        return f
+    return mark(fn) if fn else mark
+
+
+def async_service(fn: Callable | None = None, *, name: str | None = None, interruptible: bool | None = None):
+    """An asynchronous service: it starts work and later calls `self.completed(status, result)`."""
+    def mark(f):
+        f._morsec_service = ServiceInfo(name or f.__name__, True, interruptible)
+        return f
+    return mark(fn) if fn else mark
+
+
+class Component:
+    """Common declarations of every catalogue entry."""
+
+    kind: ClassVar[str] = "component"
+    builder_name: ClassVar[str | None] = None  # MORSE builder class name (MotionVW); default: CamelCase of the id
+    short_descr: ClassVar[str] = ""
+    Properties: ClassVar[type[ComponentProperties]] = ComponentProperties
+
+    # filled in by the catalogue when the folder is loaded
+    id: ClassVar[str] = ""
+    folder: ClassVar[Any] = None
+
+    @classmethod
+    def doc(cls) -> str:
+        return (cls.__doc__ or "").strip()
+
+
+class Device(Component):
+    """A sensor or an actuator: data fields, levels, a frequency, services."""
+
+    frequency: ClassVar[float] = 60.0
+    data: ClassVar[tuple[DataField, ...]] = ()
+    levels: ClassVar[tuple[Level, ...]] = ()
+    exportable: ClassVar[bool] = True  # False: no stream (keyboard, drag)
+
+    @classmethod
+    def default_level(cls) -> str | None:
+        for level in cls.levels:
+            if level.default:
+                return level.name
+        return cls.levels[0].name if cls.levels else None
+
+    @classmethod
+    def fields_at(cls, level: str | None) -> list[DataField]:
+        return [f for f in cls.data if f.at(level)]
+
+    @classmethod
+    def services(cls) -> dict[str, ServiceInfo]:
+        found: dict[str, ServiceInfo] = {}
+        for klass in reversed(cls.__mro__):
+            for attr in vars(klass).values():
+                info = getattr(attr, "_morsec_service", None)
+                if info is not None:
+                    found[info.name] = info
+        return dict(sorted(found.items()))
+
+    # ---- run time (the runtime issue fills in the loop side)
+    def __init__(self, context: Any = None):
+        self.context = context
+        self.local_data: OrderedDict[str, Any] = OrderedDict()
+
+    def default_action(self) -> None:
+        """Sensors compute `local_data`; actuators apply it. Called at the component's frequency."""
+
+
+TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s (Unix epoch unless relative time)")
+
+
+class Sensor(Device):
+    kind = "sensor"
+    direction: ClassVar[str] = "OUT"
+
+    @classmethod
+    def fields_at(cls, level: str | None) -> list[DataField]:
+        return [TIMESTAMP] + super().fields_at(level)
+
+
+class Actuator(Device):
+    kind = "actuator"
+    direction: ClassVar[str] = "IN"
+
+
+class Robot(Component):
+    """A robot: a xacro file in its folder describing links and joints, plus physics settings."""
+
+    kind = "robot"
+    Properties = RobotProperties
+    xacro: ClassVar[str] = "robot.urdf.xacro"
+    # height of the origin above the ground when the robot stands on it; added to `translate` z so that
+    # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's)
+    spawn_height: ClassVar[float] = 0.0
+    static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
+    collision: ClassVar[bool] = True
+
+
+class Environment(Component):
+    """A world: `environment.xml.j2` in its folder, placed in the worldbody."""
+
+    kind = "environment"
+    template: ClassVar[str] = "environment.xml.j2"
+
+
+class Prop(Component):
+    """A passive object shape: `model.xml.j2` in its folder, given size and colour."""
+
+    kind = "prop"
+    template: ClassVar[str] = "model.xml.j2"
+
+
+KINDS: dict[str, type[Component]] = {
+    "robots": Robot,
+    "sensors": Sensor,
+    "actuators": Actuator,
+    "environments": Environment,
+    "props": Prop,
+}

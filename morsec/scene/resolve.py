@@ -1,0 +1,81 @@
+"""After validation: canonical type ids, names (MORSE rules), default interfaces, levels and frequencies
+written out, so that the IR records exactly what will run."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from morsec.catalogue import Catalogue
+from morsec.errors import SceneError
+from morsec.scene.naming import assign_names
+from morsec.scene.positions import SourceMap
+
+
+def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
+    def fail(path: tuple, message: str) -> None:
+        pos = smap.find(path) if smap else None
+        line, col = pos if pos else (None, None)
+        raise SceneError(message, smap.file if smap else None, line, col)
+
+    for robot in scene.robots:
+        robot.type = cat.resolve("robots", robot.type)
+    for obj in scene.objects:
+        obj.type = cat.resolve("props", obj.type)
+
+    top = list(scene.robots) + list(scene.objects)
+    paths = [("robots", i) for i in range(len(scene.robots))] + [("objects", i) for i in range(len(scene.objects))]
+    assign_names(top, default=lambda e: e.type,
+                 on_duplicate=lambda i, name: fail(paths[i] + ("name",), f"duplicate name {name!r}: robots and "
+                                                   "objects share one namespace; rename one of them"))
+    assign_names(scene.zones, default=lambda z: z.type,
+                 on_duplicate=lambda i, name: fail(("zones", i, "name"), f"duplicate zone name {name!r}"))
+
+    for r, robot in enumerate(scene.robots):
+        _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail)
+
+    multinode = scene.environment.multinode
+    if multinode is not None:
+        robot_names = {robot.name for robot in scene.robots}
+        for node, names in multinode.distribution.items():
+            for name in names:
+                if name not in robot_names:
+                    fail(("environment", "multinode", "distribution", node),
+                         f"multinode node {node!r} lists robot {name!r}, which is not in the scene")
+
+
+def _resolve_children(components: list, parent_path: tuple, default_interface: str | None, cat: Catalogue, fail):
+    for c in components:
+        c.type = cat.resolve("sensors", c.type) or cat.resolve("actuators", c.type)
+    assign_names(components, default=lambda c: c.type,
+                 on_duplicate=lambda i, name: fail(parent_path + ("components", i, "name"),
+                                                   f"duplicate component name {name!r} under the same parent"))
+    devices = cat.devices()
+    for i, comp in enumerate(components):
+        cls = devices[comp.type]
+        if comp.level is None:
+            comp.level = cls.default_level()
+        if comp.frequency is None:
+            comp.frequency = float(cls.frequency)
+        for middleware in comp.interfaces:
+            _add_stream(comp, cls, middleware)
+            _add_service(comp, middleware)
+        if default_interface:
+            if not comp.streams:
+                _add_stream(comp, cls, default_interface)
+            if not comp.services:
+                _add_service(comp, default_interface)
+        for stream in comp.streams:
+            if stream.direction is None:
+                stream.direction = cls.direction
+        _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail)
+
+
+def _add_stream(comp, cls, middleware: str) -> None:
+    from morsec.scene.models import StreamSpec
+    if cls.exportable and not any(s.middleware == middleware for s in comp.streams):
+        comp.streams.append(StreamSpec(middleware=middleware))
+
+
+def _add_service(comp, middleware: str) -> None:
+    if middleware == "socket" and middleware not in comp.services:
+        comp.services.append(middleware)
