@@ -70,6 +70,39 @@ def schema() -> None:
 
 
 @app.command()
+def run(
+    scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
+    time_strategy: Annotated[Optional[str], typer.Option(
+        "--time-strategy", help="best_effort (follow the wall clock) or fixed_step (as fast as possible)")] = None,
+    duration: Annotated[Optional[float], typer.Option(help="stop after this many simulated seconds")] = None,
+    time_scale: Annotated[Optional[float], typer.Option(help="simulated seconds per wall-clock second (best_effort)")] = None,
+    bind: Annotated[str, typer.Option(help="address the servers listen on")] = "127.0.0.1",
+    service_port: Annotated[Optional[int], typer.Option(help="service port (default 4000, else 4001-4010)")] = None,
+    port_base: Annotated[Optional[int], typer.Option(help="first stream port instead of 60000")] = None,
+    seed: Annotated[Optional[int], typer.Option(help="random seed for noise (default: the scene's)")] = None,
+    out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+) -> None:
+    """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
+    import logging
+    from morsec.runtime.launch import prepare_build, run_simulation
+    from morsec.runtime.simulation import RunOptions
+    logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+    if time_strategy not in (None, "best_effort", "fixed_step"):
+        fail(MorsecError(f"--time-strategy must be best_effort or fixed_step, got {time_strategy!r}"))
+    for name, value in (("--duration", duration), ("--time-scale", time_scale)):
+        if value is not None and not value > 0:
+            fail(MorsecError(f"{name} must be a positive number, got {value}"))
+    try:
+        build_dir, cat = prepare_build(scene, out)
+        options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
+                             port_base=port_base, seed=seed)
+        run_simulation(build_dir, cat, options, duration)
+    except MorsecError as err:
+        fail(err)
+    typer.echo("EXITING SIMULATION")
+
+
+@app.command()
 def version() -> None:
     """Print the versions of morsec and MuJoCo."""
     import mujoco

@@ -17,6 +17,7 @@ reads or writes `local_data` only: components never talk to a middleware.
 
 from __future__ import annotations
 
+import copy
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any, Callable, ClassVar
@@ -131,13 +132,65 @@ class Device(Component):
                     found[info.name] = info
         return dict(sorted(found.items()))
 
-    # ---- run time (the runtime issue fills in the loop side)
+    # ---- run time: the simulation creates one instance per scene component
     def __init__(self, context: Any = None):
         self.context = context
         self.local_data: OrderedDict[str, Any] = OrderedDict()
+        if context is None:  # declaration-only use (docs, schema)
+            return
+        self.sim = context.sim
+        self.name: str = context.fqn
+        self.robot = context.robot
+        self.body_id: int = context.body_id
+        self.properties = context.properties
+        self.level: str | None = context.level
+        self.frequency: float = context.frequency
+        for f in self.fields_at(self.level):
+            self.local_data[f.name] = copy.deepcopy(f.default)
+
+    def start(self) -> None:
+        """Called once, after the first forward kinematics, before the loop starts."""
 
     def default_action(self) -> None:
         """Sensors compute `local_data`; actuators apply it. Called at the component's frequency."""
+
+    def interrupt(self) -> None:
+        """A running asynchronous service of this component was cancelled or preempted."""
+
+    def completed(self, status: str = "SUCCESS", result: Any = None, request: Any = None) -> None:
+        """End a running asynchronous service (the one started last, unless `request` is given)."""
+        self.sim.requests.complete(self.name, status, result, request)
+
+    # ---- services every component has (reference §2)
+    @service
+    def get_properties(self) -> dict:
+        """The component's properties: {name: value}."""
+        return self.properties.model_dump(mode="json")
+
+    @service
+    def set_property(self, prop_name: str, prop_val: Any) -> None:
+        """Change one property (validated against the component's property model)."""
+        if prop_name not in type(self.properties).model_fields:
+            from morsec.errors import did_you_mean
+            raise ValueError(f"no property {prop_name!r}{did_you_mean(prop_name, type(self.properties).model_fields)}")
+        setattr(self.properties, prop_name, prop_val)
+
+    @service
+    def get_configurations(self) -> dict:
+        """Level, frequency, streams, services and modifiers of this component."""
+        return self.context.configuration
+
+    # ---- frame helpers: this component's frame in the world
+    def position(self):
+        return self.sim.data.xpos[self.body_id]
+
+    def rotation(self):
+        return self.sim.data.xmat[self.body_id].reshape(3, 3)
+
+    def euler(self) -> tuple[float, float, float]:
+        """(roll, pitch, yaw) of this component's frame, XYZ Euler, rad."""
+        from morsec.geometry import matrix_to_euler
+        return matrix_to_euler(self.rotation())
 
 
 TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s (Unix epoch unless relative time)")
@@ -151,10 +204,18 @@ class Sensor(Device):
     def fields_at(cls, level: str | None) -> list[DataField]:
         return [TIMESTAMP] + super().fields_at(level)
 
+    @service
+    def get_local_data(self) -> dict:
+        """The last data this sensor computed."""
+        return dict(self.local_data)
+
 
 class Actuator(Device):
     kind = "actuator"
     direction: ClassVar[str] = "IN"
+    # True: the robot gets velocity servos (forward, lateral, yaw) on its base site, driven through
+    # RobotHandle.apply_speed; MuJoCo runs them inside the physics sub-steps, no Python per sub-step
+    base_servo: ClassVar[bool] = False
 
 
 class Robot(Component):

@@ -1,9 +1,14 @@
-"""The one exception for mistakes a user can make; the CLI prints it in one or two lines and exits 2."""
+"""The one exception for mistakes a user can make; the CLI prints it in one or two lines and exits 2.
+
+A scene error reads `file:line:col: <yaml path>: <message>`, e.g.
+
+    scenes/x.yaml:12:7: robots[0].components[2].translte: unknown key 'translte'; did you mean 'translate'?
+"""
 
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 
 class MorsecError(Exception):
@@ -41,11 +46,42 @@ def location(file: str | None, line: int | None, column: int | None) -> str:
     return f"{file}:{line}:{column or 1}"
 
 
+def yaml_path(path: Sequence) -> str:
+    """('robots', 0, 'components', 1, 'type') -> 'robots[0].components[1].type'."""
+    out = ""
+    for part in path:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out
+
+
+def close_matches(word: str, choices: Iterable[str], n: int = 3) -> list[str]:
+    """The choices closest to `word`, best first; case differences count as close."""
+    choices = list(dict.fromkeys(choices))
+    matches = difflib.get_close_matches(word, choices, n=n, cutoff=0.6)
+    folded = {c.lower(): c for c in choices}
+    exact = folded.get(word.lower())
+    if exact is not None and exact not in matches:
+        matches = [exact, *matches][:n]
+    return matches
+
+
 def did_you_mean(word: str, choices: Iterable[str], n: int = 3) -> str:
-    """' (did you mean 'x'?)' or ' (did you mean one of 'x', 'y'?)' or '' when nothing is close."""
-    matches = difflib.get_close_matches(word, list(choices), n=n, cutoff=0.6)
+    """"; did you mean 'x'?" or "; did you mean one of 'x', 'y'?" or '' when nothing is close."""
+    matches = close_matches(str(word), choices, n)
     if not matches:
         return ""
     if len(matches) == 1:
         return f"; did you mean {matches[0]!r}?"
     return "; did you mean one of " + ", ".join(repr(m) for m in matches) + "?"
+
+
+def one_of(choices: Iterable[str], limit: int = 12) -> str:
+    """"'a', 'b' or 'c'" (at most `limit` shown, then '...')."""
+    items = [repr(c) for c in choices]
+    if not items:
+        return "(none)"
+    if len(items) > limit:
+        return ", ".join(items[:limit]) + ", ..."
+    if len(items) == 1:
+        return items[0]
+    return ", ".join(items[:-1]) + " or " + items[-1]

@@ -22,7 +22,7 @@ from morsec.catalogue import Catalogue, level_class, load_catalogue
 from morsec.compiler.middleware import middleware_config
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
-from morsec.errors import SceneError
+from morsec.errors import SceneError, yaml_path
 from morsec.scene.loader import load_scene
 from morsec.scene.naming import join
 
@@ -46,12 +46,19 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
     files: dict[str, str] = {}
     trees = {}
     robots = []
-    for robot in scene.robots:
+    for r, robot in enumerate(scene.robots):
         cls = cat.get("robots", robot.type)
-        urdf = expand_xacro(cls.folder / cls.xacro, {"name": robot.name})
+        xacro_file = cls.folder / cls.xacro
+        try:
+            if not xacro_file.is_file():
+                raise SceneError(f"robot type {robot.type!r}: xacro file {cls.xacro!r} not found "
+                                 f"(searched {xacro_file})")
+            urdf = expand_xacro(xacro_file, {"name": robot.name})
+            trees[robot.name] = read_urdf(urdf, f"{xacro_file}")
+        except SceneError as err:
+            raise _at_scene(err, scene, ("robots", r, "type")) from None
         path = f"robots/{robot.name}.urdf"
         files[path] = urdf
-        trees[robot.name] = read_urdf(urdf, f"{cls.folder / cls.xacro}")
         robots.append({"name": robot.name, "type": robot.type, "class": class_ref(cls), "urdf": path,
                        "free": not (robot.physics_type == "static" or cls.static)})
     xml = render_scene(scene, cat, trees, loop_frequency)
@@ -138,7 +145,19 @@ def _anchor(message: str, xml: str, scene) -> SceneError:
     pos = smap.find(path) if (smap and path) else None
     line, col = pos if pos else (None, None)
     what = f" (from {owner!r})" if owner else ""
-    return SceneError(f"MuJoCo rejected the compiled scene{what}: {first}", smap.file if smap else None, line, col)
+    where = f"{yaml_path(path)}: " if (smap and path) else ""
+    return SceneError(f"{where}MuJoCo rejected the compiled scene{what}: {first}", smap.file if smap else None,
+                      line, col)
+
+
+def _at_scene(err: SceneError, scene, path: tuple) -> SceneError:
+    """An error found while compiling one scene entry, placed at that entry of the scene file."""
+    smap = scene._source
+    if err.file is not None or smap is None:
+        return err
+    pos = smap.find(path)
+    line, col = pos if pos else (None, None)
+    return SceneError(f"{yaml_path(path)}: {err.message}", smap.file, line, col)
 
 
 def _enclosing_body(xml: str, line: int) -> str | None:
@@ -172,23 +191,40 @@ def _scene_path(scene, body: str) -> tuple | None:
 
 
 def write_build(files: dict[str, str], out_dir: Path) -> None:
-    """Write all files into a fresh temporary folder, then put it in place of `out_dir`."""
+    """Write all files into a fresh temporary folder, then put it in place of `out_dir`; a previous build
+    there is replaced only once the new one is complete, and a folder that is not a build is never touched."""
     out_dir = out_dir.resolve()
+    if out_dir.exists() and not out_dir.is_dir():
+        raise SceneError(f"{out_dir}: exists and is not a folder; choose another build folder with -o")
     if out_dir.exists() and not (out_dir / MANIFEST).is_file() and any(out_dir.iterdir()):
-        raise SceneError(f"{out_dir}: refusing to replace a folder that is not a morsec build (no {MANIFEST})")
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        raise SceneError(f"{out_dir}: refusing to replace a folder that is not a morsec build (no {MANIFEST}); "
+                         "choose another build folder with -o")
+    try:
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+    except OSError as err:
+        raise SceneError(f"{out_dir}: cannot create the build folder: {err.strerror or err}") from None
+    old = None
     try:
         for name, text in files.items():
             target = tmp / name
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(text, encoding="utf-8")
         if out_dir.exists():
-            shutil.rmtree(out_dir)
+            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
+            out_dir.rename(old / "build")
         tmp.rename(out_dir)
-    except BaseException:
+    except BaseException as err:
         shutil.rmtree(tmp, ignore_errors=True)
+        if old is not None and (old / "build").exists() and not out_dir.exists():
+            (old / "build").rename(out_dir)  # put the previous build back
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+        if isinstance(err, OSError):
+            raise SceneError(f"{out_dir}: cannot write the build: {err.strerror or err}") from None
         raise
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
 
 
 def dump(data) -> str:

@@ -21,7 +21,10 @@ from morsec.resources import data_dir
 from morsec.scene.naming import join
 from morsec.compiler.urdf import Link
 
-SENSOR_WIDTH_MM = 32.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
+SENSOR_WIDTH_MM = 32.0
+# base velocity servo gains per kg of robot: stiff enough to override wheel/ground friction when
+# turning (MORSE's motion actuators are kinematic); implicitfast integrates them stably
+SERVO_GAIN_PER_KG = 200.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
 
 
 def template_env(cat: Catalogue) -> jinja2.Environment:
@@ -82,6 +85,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     robots = [render(env, "mjcf/robot.xml.j2", robot=_robot_body(r, cat, env, robot_trees[r.name]))
               for r in scene.robots]
     objects = [_object(o, cat, env) for o in scene.objects]
+    servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r.components, cat)]
     zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
 
     cam = scene.environment.camera
@@ -96,7 +100,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         offwidth=1920, offheight=1080,
         camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy},
         environment=env_xml, environment_assets=env_assets,
-        robots=robots, objects=objects, zones=zones,
+        robots=robots, objects=objects, zones=zones, servos=servos,
     ))
 
 
@@ -124,6 +128,17 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     components = [_component(c, robot.name, cat, env) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
+
+
+def _needs_servo(components, cat: Catalogue) -> bool:
+    devices = cat.devices()
+    return any(getattr(devices[c.type], "base_servo", False) or _needs_servo(c.components, cat) for c in components)
+
+
+def _servo(robot, cat: Catalogue, tree: Link) -> dict:
+    mass = robot.mass or sum(link.mass for link in tree.walk()) or 1.0
+    gain = SERVO_GAIN_PER_KG * mass
+    return {"robot": robot.name, "kv_linear": gain, "kv_angular": gain}
 
 
 def _prepare_links(tree: Link, robot) -> None:

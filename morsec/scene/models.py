@@ -29,8 +29,9 @@ class Strict(BaseModel):
             for key in data:
                 if key not in known:
                     raise PydanticCustomError(
-                        "unknown_key", "unknown key {key!r}{hint}",
-                        {"key": key, "hint": did_you_mean(str(key), sorted(known))})
+                        "unknown_key", "unknown key {shown}{hint}",
+                        {"key": key, "shown": repr(key), "hint": did_you_mean(str(key), sorted(known)),
+                         "allowed": sorted(known)})
         return data
 
 
@@ -41,9 +42,9 @@ def _check_name(name: str) -> str:
     if bad:
         shown = ", ".join(repr(c) for c in bad)
         raise PydanticCustomError(
-            "bad_name", "name {name!r} contains {shown}: names are joined with '.' into "
+            "bad_name", "name {name_shown} contains {shown}: names are joined with '.' into "
             "fully-qualified names (robot.child) and sent over line-based protocols",
-            {"name": name, "shown": shown})
+            {"name": name, "name_shown": repr(name), "shown": shown})
     return name
 
 
@@ -92,12 +93,13 @@ class ModifierSpec(Strict):
     @model_validator(mode="after")
     def _known(self) -> "ModifierSpec":
         if self.name not in MODIFIERS:
-            raise PydanticCustomError("unknown_modifier", "unknown modifier {name!r}{hint}",
-                                      {"name": self.name, "hint": did_you_mean(self.name, MODIFIERS)})
+            raise PydanticCustomError("unknown_modifier", "unknown modifier {shown}{hint}",
+                                      {"name": self.name, "shown": repr(self.name),
+                                       "hint": did_you_mean(self.name, MODIFIERS)})
         for key, value in (self.model_extra or {}).items():
             if not isinstance(value, (bool, int, float, str, dict)):
-                raise PydanticCustomError("bad_param", "modifier parameter {key!r} must be a number, a string, "
-                                          "a bool or a per-axis mapping", {"key": key})
+                raise PydanticCustomError("bad_param", "modifier parameter {shown} must be a number, a string, "
+                                          "a bool or a per-axis mapping", {"key": key, "shown": repr(key)})
         return self
 
 

@@ -2,6 +2,7 @@
 
 Paths are tuples of keys and list indices, e.g. ('robots', 0, 'components', 1, 'type').
 `keys[path]` is where the key itself is written, `values[path]` where its value starts.
+Lines and columns count from 1.
 """
 
 from __future__ import annotations
@@ -40,36 +41,72 @@ class SourceMap:
 
 # ---------------------------------------------------------------- YAML
 
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+
+
 def parse_yaml(text: str, file: str) -> tuple[Any, SourceMap]:
     smap = SourceMap(file)
     try:
         node = yaml.compose(text, Loader=yaml.SafeLoader)
     except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None) or getattr(err, "context_mark", None)
-        problem = getattr(err, "problem", None) or str(err).splitlines()[0]
-        line, col = (mark.line + 1, mark.column + 1) if mark else (None, None)
-        raise SceneError(f"YAML syntax error: {problem}", file, line, col) from None
+        raise _yaml_error(err, file, "YAML syntax error") from None
     if node is None:
         return {}, smap
     constructor = yaml.SafeLoader("")
-    return _yaml_node(node, (), smap, constructor), smap
+    try:
+        return _yaml_node(node, (), smap, constructor), smap
+    except yaml.YAMLError as err:  # a scalar that cannot be constructed: unknown tag, bad timestamp ...
+        raise _yaml_error(err, file, "YAML error") from None
+
+
+def _yaml_error(err: yaml.YAMLError, file: str, what: str) -> SceneError:
+    mark = getattr(err, "problem_mark", None) or getattr(err, "context_mark", None)
+    problem = getattr(err, "problem", None) or str(err).splitlines()[0]
+    context = getattr(err, "context", None)
+    if context and "while" not in context:
+        problem = f"{problem} ({context})"
+    line, col = (mark.line + 1, mark.column + 1) if mark else (None, None)
+    return SceneError(f"{what}: {problem}", file, line, col)
+
+
+def _at(node: yaml.Node) -> Position:
+    return node.start_mark.line + 1, node.start_mark.column + 1
+
+
+def _mapping_pairs(node: yaml.MappingNode, smap: SourceMap) -> tuple[list, list]:
+    """(explicit pairs, pairs merged in with `<<: *anchor`); explicit keys win, earlier merges win."""
+    explicit, merged = [], []
+    for key_node, value_node in node.value:
+        if key_node.tag != _MERGE_TAG:
+            explicit.append((key_node, value_node))
+            continue
+        sources = value_node.value if isinstance(value_node, yaml.SequenceNode) else [value_node]
+        for source in sources:
+            if not isinstance(source, yaml.MappingNode):
+                raise SceneError("YAML error: '<<' merges mappings only (<<: *anchor or <<: [*a, *b])",
+                                 smap.file, *_at(source))
+            inner_explicit, inner_merged = _mapping_pairs(source, smap)
+            merged.extend(inner_explicit + inner_merged)
+    return explicit, merged
 
 
 def _yaml_node(node: yaml.Node, path: Path, smap: SourceMap, constructor: yaml.SafeLoader) -> Any:
-    smap.values.setdefault(path, (node.start_mark.line + 1, node.start_mark.column + 1))
+    smap.values.setdefault(path, _at(node))
     if isinstance(node, yaml.MappingNode):
         out: dict[Any, Any] = {}
-        for key_node, value_node in node.value:
+        explicit, merged = _mapping_pairs(node, smap)
+        for key_node, value_node in explicit + merged:
             key = constructor.construct_object(key_node, deep=True)
             if isinstance(key, (list, dict)):
-                raise SceneError("a mapping key must be a plain word", smap.file,
-                                 key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+                raise SceneError("a mapping key must be a plain word", smap.file, *_at(key_node))
             if key in out:
-                raise SceneError(f"duplicate key {key!r}", smap.file,
-                                 key_node.start_mark.line + 1, key_node.start_mark.column + 1)
+                if any(key_node is k for k, _ in merged):
+                    continue  # merged keys never override what is written
+                raise SceneError(f"duplicate key {key!r}: each key may appear once in a mapping",
+                                 smap.file, *_at(key_node))
             child = path + (key,)
-            smap.keys[child] = (key_node.start_mark.line + 1, key_node.start_mark.column + 1)
-            smap.values[child] = (value_node.start_mark.line + 1, value_node.start_mark.column + 1)
+            smap.keys[child] = _at(key_node)
+            smap.values[child] = _at(value_node)
             out[key] = _yaml_node(value_node, child, smap, constructor)
         return out
     if isinstance(node, yaml.SequenceNode):
@@ -80,17 +117,20 @@ def _yaml_node(node: yaml.Node, path: Path, smap: SourceMap, constructor: yaml.S
 # ---------------------------------------------------------------- TOML
 
 _TOML_ERROR_AT = re.compile(r"^(.*?)\s*\(at line (\d+), column (\d+)\)\s*$")
+_TOML_ERROR_AT_END = re.compile(r"^(.*?)\s*\(at end of document\)\s*$")
+_TOML_HINTS = {
+    "Cannot overwrite a value": "a key is written twice",
+    "Unclosed array": "a '[' has no matching ']'",
+    "Unterminated string": "a string has no closing quote",
+    "Invalid value": "strings need quotes; numbers, true, false, inf and nan do not",
+}
 
 
 def parse_toml(text: str, file: str) -> tuple[Any, SourceMap]:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
-        msg = str(err)
-        m = _TOML_ERROR_AT.match(msg)
-        if m:
-            raise SceneError(f"TOML syntax error: {m.group(1)}", file, int(m.group(2)), int(m.group(3))) from None
-        raise SceneError(f"TOML syntax error: {msg}", file) from None
+        raise _toml_error(str(err), text, file) from None
     smap = SourceMap(file)
     try:
         _TomlLocator(text, smap).run()
@@ -99,9 +139,23 @@ def parse_toml(text: str, file: str) -> tuple[Any, SourceMap]:
     return data, smap
 
 
+def _toml_error(msg: str, text: str, file: str) -> SceneError:
+    line = col = None
+    m = _TOML_ERROR_AT.match(msg)
+    if m:
+        msg, line, col = m.group(1), int(m.group(2)), int(m.group(3))
+    else:
+        m = _TOML_ERROR_AT_END.match(msg)
+        if m:
+            lines = text.split("\n")
+            msg, line, col = m.group(1), len(lines), len(lines[-1]) + 1
+    hint = _TOML_HINTS.get(msg)
+    return SceneError(f"TOML syntax error: {msg}" + (f" ({hint})" if hint else ""), file, line, col)
+
+
 _TOKEN = re.compile(
     r'(?P<ws>[ \t]+)|(?P<comment>#[^\n]*)|(?P<nl>\r?\n)'
-    r'|(?P<mstr>"""(?:\\.|[^\\])*?"""|\'\'\'.*?\'\'\')'
+    r'|(?P<mstr>"""(?:\\.|[^\\])*?"""+|\'\'\'.*?\'\'\'+)'
     r'|(?P<str>"(?:\\.|[^"\\\n])*"|\'[^\'\n]*\')'
     r'|(?P<punct>\[\[|\]\]|[\[\]{}=,.])'
     r'|(?P<word>[^\s\[\]{}=,#"\']+)',
@@ -110,7 +164,10 @@ _TOKEN = re.compile(
 
 
 class _TomlLocator:
-    """A small TOML reader that only records where keys and values are; tomllib already checked the syntax."""
+    """A small TOML reader that only records where keys and values are; tomllib already checked the syntax.
+
+    Handles tables, arrays of tables (nested too), dotted keys, inline tables and (multi-line) arrays.
+    """
 
     def __init__(self, text: str, smap: SourceMap):
         self.tokens: list[tuple[str, str, int, int]] = []
@@ -140,6 +197,14 @@ class _TomlLocator:
         while self.peek()[0] == "nl":
             self.i += 1
 
+    def skip_to(self, stops: set[str], newline: bool) -> None:
+        """Skip what this reader does not understand (e.g. a date with a space) up to the next separator."""
+        while True:
+            kind, text, _, _ = self.peek()
+            if kind == "eof" or text in stops or (newline and kind == "nl"):
+                return
+            self.i += 1
+
     def dotted_key(self, stop: set[str]) -> list[tuple[str, int, int]]:
         parts = []
         while self.peek()[1] not in stop and self.peek()[0] not in ("eof", "nl"):
@@ -147,8 +212,15 @@ class _TomlLocator:
             if text == ".":
                 continue
             if kind == "str":
-                text = text[1:-1]
-            parts.append((text, line, col))
+                parts.append((_unquote(text), line, col))
+            elif kind == "word":  # a bare dotted key is one word: robots.components
+                offset = 0
+                for piece in text.split("."):
+                    if piece:
+                        parts.append((piece, line, col + offset))
+                    offset += len(piece) + 1
+            else:
+                parts.append((text, line, col))
         return parts
 
     def run(self):
@@ -162,24 +234,28 @@ class _TomlLocator:
                 self.take()
                 parts = self.dotted_key({"]]", "]"})
                 self.take()
-                table = self.resolve(parts, array=(text == "[["))
+                table = self.resolve(parts, array=(text == "[["), at=(line, col))
+                self.skip_to(set(), newline=True)
                 continue
             self.key_value(table)
+            self.skip_to(set(), newline=True)
 
-    def resolve(self, parts, array: bool) -> Path:
+    def resolve(self, parts, array: bool, at: Position) -> Path:
+        """The data path of a [table] or [[array.of.tables]] header; arrays of tables extend the last entry."""
         path: Path = ()
         for n, (name, line, col) in enumerate(parts):
             path = path + (name,)
+            self.smap.keys.setdefault(path, (line, col))
             last = n == len(parts) - 1
             if path in self.array_counts and not (last and array):
                 path = path + (self.array_counts[path] - 1,)
         if array:
             index = self.array_counts.get(path, 0)
             self.array_counts[path] = index + 1
-            self.smap.keys.setdefault(path, parts[-1][1:])
+            self.smap.values.setdefault(path, at)
             path = path + (index,)
-        self.smap.keys.setdefault(path, parts[-1][1:])
-        self.smap.values.setdefault(path, parts[-1][1:])
+        self.smap.keys.setdefault(path, at)
+        self.smap.values.setdefault(path, at)
         return path
 
     def key_value(self, table: Path):
@@ -192,28 +268,48 @@ class _TomlLocator:
         self.value(path)
 
     def value(self, path: Path):
-        while self.peek()[0] == "nl":
-            self.take()
+        self.skip_newlines()
         kind, text, line, col = self.peek()
         self.smap.values.setdefault(path, (line, col))
         if text == "{":
             self.take()
             while self.peek()[1] != "}" and self.peek()[0] != "eof":
-                if self.peek()[1] == ",":
+                if self.peek()[1] == "," or self.peek()[0] == "nl":
                     self.take()
                     continue
                 self.key_value(path)
+                self.skip_to({",", "}"}, newline=False)
             self.take()
-        elif text == "[":
-            self.take()
+        elif text in ("[", "[["):
+            if text == "[[":  # `[[1, 2], [3]]`: open the outer array, leave '[' for the first item
+                self.tokens[self.i] = ("punct", "[", line, col + 1)
+            else:
+                self.take()
             index = 0
             while True:
                 while self.peek()[0] == "nl" or self.peek()[1] == ",":
                     self.take()
-                if self.peek()[1] == "]" or self.peek()[0] == "eof":
-                    self.take()
+                if self.peek()[1] in ("]", "]]") or self.peek()[0] == "eof":
+                    self._close_bracket()
                     break
                 self.value(path + (index,))
+                self.skip_to({",", "]", "]]"}, newline=False)
                 index += 1
         else:
             self.take()
+
+    def _close_bracket(self):
+        kind, text, line, col = self.peek()
+        if text == "]]":  # `[[1, 2]]` closes two arrays with one token: leave one ']' for the outer array
+            self.tokens[self.i] = ("punct", "]", line, col + 1)
+        else:
+            self.take()
+
+
+def _unquote(text: str) -> str:
+    if text.startswith('"'):
+        try:
+            return tomllib.loads(f"k = {text}")["k"]
+        except tomllib.TOMLDecodeError:
+            return text[1:-1]
+    return text[1:-1]

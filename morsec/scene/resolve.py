@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from morsec.catalogue import Catalogue
-from morsec.errors import SceneError
+from morsec.errors import SceneError, yaml_path
 from morsec.scene.naming import assign_names
 from morsec.scene.positions import SourceMap
 
@@ -15,7 +15,7 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     def fail(path: tuple, message: str) -> None:
         pos = smap.find(path) if smap else None
         line, col = pos if pos else (None, None)
-        raise SceneError(message, smap.file if smap else None, line, col)
+        raise SceneError(f"{yaml_path(path)}: {message}", smap.file if smap else None, line, col)
 
     for robot in scene.robots:
         robot.type = cat.resolve("robots", robot.type)
@@ -37,9 +37,9 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     if multinode is not None:
         robot_names = {robot.name for robot in scene.robots}
         for node, names in multinode.distribution.items():
-            for name in names:
+            for j, name in enumerate(names):
                 if name not in robot_names:
-                    fail(("environment", "multinode", "distribution", node),
+                    fail(("environment", "multinode", "distribution", node, j),
                          f"multinode node {node!r} lists robot {name!r}, which is not in the scene")
 
 

@@ -11,6 +11,7 @@ class MotionVW(Actuator):
     short_descr = "Forward speed and yaw rate of the robot"
     builder_name = "MotionVW"
     frequency = 60.0
+    base_servo = True
 
     class Properties(ComponentProperties):
         ControlType: Literal["Velocity", "Position"] = "Velocity"

@@ -1,0 +1,1 @@
+"""Middlewares: MORSE's socket protocol (streams, services, lockstep) and text files."""

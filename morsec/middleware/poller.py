@@ -1,0 +1,125 @@
+"""Non-blocking sockets, polled once per frame on the loop thread: one `select` for all of them."""
+
+from __future__ import annotations
+
+import errno
+import logging
+import selectors
+import socket
+
+log = logging.getLogger("morsec.middleware")
+
+READ_CHUNK = 65536
+
+
+class Poller:
+    def __init__(self):
+        self.selector = selectors.DefaultSelector()
+
+    def register(self, sock: socket.socket, handler) -> None:
+        self.selector.register(sock, selectors.EVENT_READ, handler)
+
+    def unregister(self, sock: socket.socket) -> None:
+        try:
+            self.selector.unregister(sock)
+        except (KeyError, ValueError):
+            pass
+
+    def poll(self, timeout: float = 0.0) -> None:
+        if not self.selector.get_map():
+            return
+        for key, _ in self.selector.select(timeout):
+            key.data(key.fileobj)
+
+    def close(self) -> None:
+        for key in list(self.selector.get_map().values()):
+            try:
+                key.fileobj.close()
+            except OSError:
+                pass
+        self.selector.close()
+
+
+def listen(host: str, port: int, attempts: int = 1) -> socket.socket:
+    """Bind a listening socket on port, port+1, ... (attempts tries); OSError when none is free."""
+    last: OSError | None = None
+    for candidate in range(port, port + attempts):
+        sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            sock.bind((host, candidate))
+        except OSError as err:
+            sock.close()
+            last = err
+            if err.errno not in (errno.EADDRINUSE, errno.EACCES):
+                raise
+            continue
+        sock.listen(128)
+        sock.setblocking(False)
+        return sock
+    raise last or OSError(f"no free port from {port}")
+
+
+class Connection:
+    """One client: buffered, non-blocking; a slow reader skips whole messages rather than block the loop."""
+
+    MAX_PENDING = 8 * 1024 * 1024
+
+    def __init__(self, sock: socket.socket):
+        sock.setblocking(False)
+        try:
+            sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        except OSError:
+            pass
+        self.sock = sock
+        self.inbuf = b""
+        self.outbuf = b""
+        self.closed = False
+
+    def fileno(self) -> int:
+        return self.sock.fileno()
+
+    def receive(self) -> bytes | None:
+        """New bytes, b'' when nothing is there, None when the peer closed or failed."""
+        chunks = []
+        while True:
+            try:
+                data = self.sock.recv(READ_CHUNK)
+            except (BlockingIOError, InterruptedError):
+                break
+            except OSError:
+                return None
+            if not data:
+                return None if not chunks else b"".join(chunks)
+            chunks.append(data)
+            if len(data) < READ_CHUNK:
+                break
+        return b"".join(chunks)
+
+    def send(self, data: bytes, droppable: bool = False) -> bool:
+        """Queue and flush. A droppable message is skipped when the client lags too far behind."""
+        if self.closed:
+            return False
+        if droppable and len(self.outbuf) > self.MAX_PENDING:
+            return True
+        self.outbuf += data
+        return self.flush()
+
+    def flush(self) -> bool:
+        while self.outbuf:
+            try:
+                sent = self.sock.send(self.outbuf)
+            except (BlockingIOError, InterruptedError):
+                return True
+            except OSError:
+                self.closed = True
+                return False
+            self.outbuf = self.outbuf[sent:]
+        return True
+
+    def close(self) -> None:
+        self.closed = True
+        try:
+            self.sock.close()
+        except OSError:
+            pass

@@ -1,0 +1,104 @@
+"""MORSE socket datastreams: one TCP server per component stream; JSON lines out (sensors) or in (actuators)."""
+
+from __future__ import annotations
+
+import json
+import logging
+import socket
+
+import numpy as np
+
+from morsec.middleware.poller import Connection, Poller, listen
+
+log = logging.getLogger("morsec.middleware.socket")
+
+MAX_INPUT_LINE = 1024 * 1024
+
+
+def encode(local_data) -> bytes:
+    """json.dumps with Python's default separators, as MORSE (clients such as ArduPilot parse ', ')."""
+    return (json.dumps(local_data, default=_plain) + "\n").encode("utf-8")
+
+
+def _plain(value):
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (bytes, bytearray)):
+        return value.decode("latin-1")
+    raise TypeError(f"cannot serialise {type(value).__name__}")
+
+
+class SocketStream:
+    def __init__(self, poller: Poller, component: str, direction: str, host: str, port: int, hint_only: bool):
+        self.poller = poller
+        self.component = component
+        self.direction = direction
+        self.server = listen(host, port, attempts=100 if hint_only else 1)
+        self.port = self.server.getsockname()[1]
+        self.clients: list[Connection] = []
+        self.pending: dict | None = None  # last complete actuator message, not yet applied
+        poller.register(self.server, self._accept)
+
+    def _accept(self, server: socket.socket) -> None:
+        while True:
+            try:
+                sock, _ = server.accept()
+            except (BlockingIOError, InterruptedError):
+                return
+            except OSError:
+                return
+            conn = Connection(sock)
+            self.clients.append(conn)
+            self.poller.register(sock, lambda s, c=conn: self._readable(c))
+
+    def _readable(self, conn: Connection) -> None:
+        data = conn.receive()
+        if data is None:
+            self._drop(conn)
+            return
+        if self.direction == "OUT":
+            return  # clients of a sensor stream have nothing to say; reading only notices them leaving
+        conn.inbuf += data
+        if b"\n" not in conn.inbuf:
+            if len(conn.inbuf) > MAX_INPUT_LINE:
+                log.warning("%s: input line longer than %d bytes dropped", self.component, MAX_INPUT_LINE)
+                conn.inbuf = b""
+            return
+        complete, _, conn.inbuf = conn.inbuf.rpartition(b"\n")
+        last = complete.rsplit(b"\n", 1)[-1]
+        try:
+            message = json.loads(last.decode("utf-8"))
+        except (UnicodeDecodeError, ValueError):
+            log.warning("%s: ignored a message that is not JSON: %.80r", self.component, last)
+            return
+        if not isinstance(message, dict):
+            log.warning("%s: ignored a message that is not a JSON object: %.80r", self.component, last)
+            return
+        self.pending = message
+
+    def take(self) -> dict | None:
+        message, self.pending = self.pending, None
+        return message
+
+    @property
+    def listening(self) -> bool:
+        return bool(self.clients)
+
+    def publish(self, line: bytes) -> None:
+        for conn in list(self.clients):
+            if not conn.send(line, droppable=True):
+                self._drop(conn)
+
+    def _drop(self, conn: Connection) -> None:
+        self.poller.unregister(conn.sock)
+        conn.close()
+        if conn in self.clients:
+            self.clients.remove(conn)
+
+    def close(self) -> None:
+        for conn in list(self.clients):
+            self._drop(conn)
+        self.poller.unregister(self.server)
+        self.server.close()

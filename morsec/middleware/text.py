@@ -1,0 +1,45 @@
+"""The `text` middleware: each message of a sensor appended to a file, as readable `key = value` blocks
+or as CSV (one header line, then one row per message; lists and dicts JSON-encoded in their cell)."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+from morsec.middleware.socket_streams import _plain
+
+
+class TextStream:
+    def __init__(self, component: str, path: Path, fmt: str):
+        self.component = component
+        self.path = path
+        self.format = fmt
+        path.parent.mkdir(parents=True, exist_ok=True)
+        self.file = open(path, "w", encoding="utf-8", newline="")
+        self.csv = csv.writer(self.file) if fmt == "csv" else None
+        self.header: list[str] | None = None
+
+    listening = True
+
+    def write(self, local_data: dict) -> None:
+        if self.csv is not None:
+            if self.header is None:
+                self.header = list(local_data)
+                self.csv.writerow(self.header)
+            self.csv.writerow([_cell(local_data.get(key)) for key in self.header])
+        else:
+            self.file.write(f"==> Data at simulated time {local_data.get('timestamp', 0.0)!r} ({self.component})\n")
+            for key, value in local_data.items():
+                self.file.write(f"{key} = {_cell(value)}\n")
+            self.file.write("\n")
+        self.file.flush()
+
+    def close(self) -> None:
+        self.file.close()
+
+
+def _cell(value) -> str:
+    if isinstance(value, (list, tuple, dict)) or hasattr(value, "tolist"):
+        return json.dumps(value, default=_plain)
+    return repr(value) if isinstance(value, float) else str(value)

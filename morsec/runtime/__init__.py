@@ -1,0 +1,1 @@
+"""`morsec run`: the MuJoCo loop, components, middlewares and services."""

@@ -1,0 +1,43 @@
+"""From what the user names (a scene file or a build folder) to a running simulation."""
+
+from __future__ import annotations
+
+import signal
+from pathlib import Path
+
+from morsec.catalogue import Catalogue, load_catalogue
+from morsec.compiler.build import MANIFEST, compile_scene, write_build
+from morsec.runtime.simulation import RunOptions, Simulation
+from morsec.scene import load_scene
+
+
+def prepare_build(source: Path, out: Path | None = None) -> tuple[Path, Catalogue]:
+    """A build folder for `source`: itself if it is one, else compiled (rewritten only when it changed)."""
+    source = Path(source)
+    if source.is_dir() and (source / MANIFEST).is_file():
+        return source, load_catalogue(Path.cwd())
+    cat = load_catalogue(source.parent)
+    files = compile_scene(load_scene(source, cat), cat)
+    out_dir = Path(out) if out else Path("build") / source.stem
+    if not _same(out_dir, files):
+        write_build(files, out_dir)
+    return out_dir, cat
+
+
+def _same(out_dir: Path, files: dict[str, str]) -> bool:
+    manifest = out_dir / MANIFEST
+    try:
+        return manifest.read_text(encoding="utf-8") == files[MANIFEST]
+    except OSError:
+        return False
+
+
+def run_simulation(build_dir: Path, cat: Catalogue, options: RunOptions, duration: float | None) -> None:
+    sim = Simulation(build_dir, cat, options)
+    previous = {sig: signal.signal(sig, lambda *_: sim.request_quit()) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        sim.announce()
+        sim.run(duration)
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)

@@ -1,0 +1,89 @@
+"""A robot at run time: its base body, free joint and base velocity servos, and the ways actuators move it."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
+
+
+class RobotHandle:
+    def __init__(self, sim, name: str, properties):
+        m = sim.model
+        self.sim = sim
+        self.name = name
+        self.properties = properties
+        self.ground = bool(getattr(properties, "GroundRobot", False))
+        self.body_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
+        self.qpos_adr = self.qvel_adr = None
+        if m.body_jntnum[self.body_id] > 0:
+            jnt = m.body_jntadr[self.body_id]
+            if m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
+                self.qpos_adr = int(m.jnt_qposadr[jnt])
+                self.qvel_adr = int(m.jnt_dofadr[jnt])
+        ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"{name}/{axis}") for axis in ("vx", "vy", "wz")]
+        self.servo = ids if min(ids) >= 0 else None
+
+    @property
+    def free(self) -> bool:
+        return self.qpos_adr is not None
+
+    def pose(self) -> tuple[np.ndarray, np.ndarray]:
+        d = self.sim.data
+        return d.xpos[self.body_id].copy(), d.xmat[self.body_id].reshape(3, 3).copy()
+
+    def apply_speed(self, control_type: str, linear, angular, frequency: float) -> None:
+        """MORSE's robot.apply_speed. 'Velocity': body-frame velocity, held by the base servos inside the
+        physics steps (ground robots keep vertical velocity, roll and pitch from physics). 'Position':
+        displace by linear/frequency and rotate by angular/frequency, kinematically."""
+        d = self.sim.data
+        if control_type == "Position":
+            if self.servo:
+                d.ctrl[self.servo] = 0.0
+            self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
+            return
+        if self.servo:
+            d.ctrl[self.servo[0]] = linear[0]
+            d.ctrl[self.servo[1]] = linear[1]
+            d.ctrl[self.servo[2]] = angular[2]
+        elif self.free:
+            _, rot = self.pose()
+            v = self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
+            world = rot @ np.asarray(linear, float)
+            if self.ground:
+                world[2] = v[2]
+                v[:3] = world
+                v[5] = angular[2]
+            else:
+                v[:3] = world
+                v[3:] = angular
+
+    def displace(self, body_translation: np.ndarray, body_rotation: np.ndarray) -> None:
+        if not self.free:
+            return
+        pos, rot = self.pose()
+        delta = quat_to_matrix(euler_to_quat(*body_rotation))
+        self.set_pose(pos + rot @ body_translation, rot @ delta)
+
+    def set_pose(self, pos, rot) -> None:
+        """Put the base at a world pose and stop it."""
+        d = self.sim.data
+        if self.free:
+            d.qpos[self.qpos_adr:self.qpos_adr + 3] = pos
+            d.qpos[self.qpos_adr + 3:self.qpos_adr + 7] = matrix_to_quat(rot)
+            d.qvel[self.qvel_adr:self.qvel_adr + 6] = 0.0
+        else:
+            self.sim.model.body_pos[self.body_id] = pos
+            self.sim.model.body_quat[self.body_id] = matrix_to_quat(rot)
+        mujoco.mj_kinematics(self.sim.model, d)
+
+    def place_frame(self, frame_body: int, pos, rot) -> None:
+        """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""
+        d = self.sim.data
+        base_pos, base_rot = self.pose()
+        frame_pos, frame_rot = d.xpos[frame_body], d.xmat[frame_body].reshape(3, 3)
+        rel_rot = base_rot.T @ frame_rot
+        rel_pos = base_rot.T @ (frame_pos - base_pos)
+        new_rot = np.asarray(rot) @ rel_rot.T
+        self.set_pose(np.asarray(pos) - new_rot @ rel_pos, new_rot)

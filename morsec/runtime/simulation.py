@@ -1,0 +1,372 @@
+"""The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
+
+Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps ->
+sensors due (compute, modify, publish) -> asynchronous services that completed."""
+
+from __future__ import annotations
+
+import copy
+import json
+import logging
+import os
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from morsec.catalogue import Catalogue, level_class
+from morsec.constants import SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.errors import RuntimeFailure
+from morsec.middleware.poller import Poller
+from morsec.middleware.socket_services import ServiceServer
+from morsec.middleware.socket_streams import SocketStream, encode
+from morsec.middleware.sync import SyncServer
+from morsec.middleware.text import TextStream
+from morsec.runtime.clock import Clock, Periodic
+from morsec.runtime.robot import RobotHandle
+from morsec.scene.models import StreamSpec
+from morsec.services.requests import RequestManager
+from morsec.services.supervision import Communication, Supervision, TimeServices
+
+log = logging.getLogger("morsec.runtime")
+
+
+@dataclass
+class RunOptions:
+    strategy: str | None = None  # None: the scene's
+    time_scale: float | None = None
+    bind: str = "127.0.0.1"
+    service_port: int | None = None
+    port_base: int | None = None
+    seed: int | None = None
+    output_dir: Path = field(default_factory=Path.cwd)  # where text streams write
+
+
+@dataclass
+class ComponentContext:
+    sim: "Simulation"
+    fqn: str
+    body_id: int
+    robot: RobotHandle
+    properties: Any
+    level: str | None
+    frequency: float
+    configuration: dict
+
+
+@dataclass
+class ComponentRuntime:
+    fqn: str
+    parent: str
+    robot: str
+    kind: str
+    instance: Any
+    schedule: Periodic
+    stream_specs: list[StreamSpec]
+    defaults: list = field(default_factory=list)  # (name, default) of the data fields, for actuator input
+    socket_streams: list[SocketStream] = field(default_factory=list)
+    text_streams: list[TextStream] = field(default_factory=list)
+    active: bool = True
+    errors: set = field(default_factory=set)
+
+    def fail_once(self, err: Exception) -> None:
+        key = f"{type(err).__name__}: {err}"
+        if key not in self.errors:
+            self.errors.add(key)
+            log.error("%s: %s", self.fqn, key)
+
+
+@dataclass
+class RobotInfo:
+    name: str
+    type: str
+    handle: RobotHandle
+
+
+class Simulation:
+    def __init__(self, build_dir: Path, catalogue: Catalogue, options: RunOptions | None = None):
+        self.options = options or RunOptions()
+        build_dir = Path(build_dir)
+        try:
+            manifest = json.loads((build_dir / "manifest.json").read_text())
+            middleware = json.loads((build_dir / "middleware.json").read_text())
+            self.model = mujoco.MjModel.from_xml_path(str(build_dir / "scene.xml"))
+        except (OSError, ValueError) as err:
+            raise RuntimeFailure(f"{build_dir}: not a usable build folder: {err}") from None
+        self.data = mujoco.MjData(self.model)
+        self.manifest = manifest
+        self.scene = manifest["scene"]
+        env = self.scene["environment"]
+        loop = manifest["loop"]
+        self.substeps = int(loop["physics_substeps"])
+        self.clock = Clock(float(loop["frequency"]), self.options.strategy or env["time"]["strategy"],
+                           self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
+        seed = self.options.seed if self.options.seed is not None else env.get("seed")
+        self.rng = np.random.default_rng(seed)
+        self.quitting = False
+        self.dynamics = True
+        self.frozen: dict[int, tuple] = {}
+        self.requests = RequestManager()
+        self.poller = Poller()
+        mujoco.mj_forward(self.model, self.data)
+
+        self.robots = [self._robot(r, catalogue) for r in manifest["robots"]]
+        handles = {r.name: r.handle for r in self.robots}
+        self.components: list[ComponentRuntime] = [self._component(c, catalogue, handles)
+                                                   for c in manifest["components"]]
+        self.by_name = {c.fqn: c for c in self.components}
+        self.actuators = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "actuator"]
+        self.sensors = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "sensor"]
+        self.initial_state = (self.data.qpos.copy(), self.data.qvel.copy(), self.data.act.copy(),
+                              self.model.body_pos.copy(), self.model.body_quat.copy())
+        for comp in self.components:
+            comp.instance.start()
+
+        self.time_services = TimeServices(self)
+        for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
+                          ("communication", Communication(self))):
+            self.requests.expose(name, obj, _services_of(obj))
+        self._bind(middleware)
+
+    # ---------------------------------------------------------------- construction
+    def _robot(self, entry: dict, cat: Catalogue) -> RobotInfo:
+        ir = next(r for r in self.scene["robots"] if r["name"] == entry["name"])
+        cls = cat.get("robots", entry["type"])
+        handle = RobotHandle(self, entry["name"], cls.Properties.model_validate(ir["properties"]))
+        return RobotInfo(entry["name"], cls.builder_name or entry["type"], handle)
+
+    def _component(self, entry: dict, cat: Catalogue, robots: dict[str, RobotHandle]) -> ComponentRuntime:
+        cls = cat.devices().get(entry["type"])
+        if cls is None:
+            raise RuntimeFailure(f"component type {entry['type']!r} of {entry['fqn']} is not in the catalogue")
+        impl = level_class(cls, entry["level"])
+        body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, entry["fqn"])
+        if body < 0:
+            raise RuntimeFailure(f"scene.xml has no body for component {entry['fqn']}: rebuild the scene")
+        configuration = {k: entry[k] for k in ("level", "frequency", "streams", "services", "modifiers")}
+        context = ComponentContext(self, entry["fqn"], body, robots[entry["robot"]],
+                                   cls.Properties.model_validate(entry["properties"]), entry["level"],
+                                   float(entry["frequency"]), configuration)
+        instance = impl(context)
+        if entry["modifiers"]:
+            log.warning("%s: modifiers are recorded but not applied by this version", entry["fqn"])
+        return ComponentRuntime(
+            fqn=entry["fqn"], parent=entry["parent"], robot=entry["robot"], kind=entry["kind"], instance=instance,
+            schedule=Periodic(float(entry["frequency"]), self.clock.dt),
+            stream_specs=[StreamSpec.model_validate(s) for s in entry["streams"]],
+            defaults=[(f.name, f.default) for f in impl.fields_at(entry["level"])],
+        )
+
+    def _bind(self, middleware: dict) -> None:
+        opts = self.options
+        self.socket_ports: dict[str, int] = {}
+        try:
+            for stream in middleware["streams"]:
+                comp = self.by_name[stream["component"]]
+                if stream["middleware"] == "socket":
+                    port = stream["port"]
+                    if opts.port_base is not None and not stream["explicit_port"]:
+                        port = opts.port_base + (port - STREAM_PORT_BASE)
+                    server = SocketStream(self.poller, comp.fqn, stream["direction"], opts.bind, port, hint_only=True)
+                    comp.socket_streams.append(server)
+                    self.socket_ports[comp.fqn] = server.port
+                elif stream["middleware"] == "text":
+                    if stream["direction"] == "OUT":
+                        comp.text_streams.append(TextStream(comp.fqn, Path(opts.output_dir) / stream["file"],
+                                                            stream["serializer"]))
+            for fqn, middlewares in middleware["services"].items():
+                if "socket" in middlewares:
+                    comp = self.by_name[fqn]
+                    self.requests.expose(fqn, comp.instance, type(comp.instance).services())
+            port = opts.service_port or middleware["service_port"]
+            attempts = 1 if opts.service_port else SERVICE_PORT_ATTEMPTS + 1
+            self.service_server = ServiceServer(self.poller, self.requests, opts.bind, port, attempts)
+            sync = middleware["stream_managers"].get("socket", {})
+            self.sync = SyncServer(self.poller, opts.bind, sync["sync_port"]) if sync.get("time_sync") else None
+        except OSError as err:
+            self.close()
+            raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: {err.strerror or err}") from None
+
+    # ---------------------------------------------------------------- queries used by services
+    def components_of(self, robot: str) -> list[ComponentRuntime]:
+        return [c for c in self.components if c.robot == robot]
+
+    def component(self, name: str) -> ComponentRuntime:
+        if name not in self.by_name:
+            raise ValueError(f"unknown component {name!r}")
+        return self.by_name[name]
+
+    def scene_bodies(self) -> dict[str, int]:
+        names = [r["name"] for r in self.scene["robots"]] + [o["name"] for o in self.scene["objects"]]
+        return {n: mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, n) for n in names}
+
+    # ---------------------------------------------------------------- state changes from services
+    def request_quit(self, immediate: bool = False) -> None:
+        self.quitting = True
+        self.immediate = immediate
+
+    def reset(self) -> None:
+        qpos, qvel, act, body_pos, body_quat = self.initial_state
+        self.data.qpos[:] = qpos
+        self.data.qvel[:] = qvel
+        self.data.act[:] = act
+        self.model.body_pos[:] = body_pos
+        self.model.body_quat[:] = body_quat
+        mujoco.mj_forward(self.model, self.data)
+
+    def place_body(self, body: int, pos, rot) -> None:
+        for robot in self.robots:
+            if robot.handle.body_id == body:
+                robot.handle.set_pose(pos, rot)
+                return
+        m = self.model
+        jnt = m.body_jntadr[body] if m.body_jntnum[body] else -1
+        from morsec.geometry import matrix_to_quat
+        if jnt >= 0 and m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
+            adr, dof = m.jnt_qposadr[jnt], m.jnt_dofadr[jnt]
+            self.data.qpos[adr:adr + 3] = pos
+            self.data.qpos[adr + 3:adr + 7] = matrix_to_quat(rot)
+            self.data.qvel[dof:dof + 6] = 0.0
+        else:
+            m.body_pos[body] = pos
+            m.body_quat[body] = matrix_to_quat(rot)
+        mujoco.mj_kinematics(m, self.data)
+        if body in self.frozen:
+            self.set_frozen(body, True)
+
+    def set_frozen(self, body: int, frozen: bool) -> None:
+        m = self.model
+        jnt = m.body_jntadr[body] if m.body_jntnum[body] else -1
+        if jnt < 0 or m.jnt_type[jnt] != mujoco.mjtJoint.mjJNT_FREE:
+            return  # static bodies are frozen already
+        adr = m.jnt_qposadr[jnt]
+        if frozen:
+            self.frozen[body] = (adr, m.jnt_dofadr[jnt], self.data.qpos[adr:adr + 7].copy())
+        else:
+            self.frozen.pop(body, None)
+
+    # ---------------------------------------------------------------- the loop
+    def announce(self, out=sys.stdout) -> None:
+        lines = ["SCENE INITIALIZED",
+                 f"  services       {self.options.bind}:{self.service_server.port}  (simulation, time, communication"
+                 f"{', components' if len(self.requests.exposed) > 3 else ''})"]
+        if self.sync:
+            lines.append(f"  lockstep       {self.options.bind}:{self.sync.port}")
+        width = max([len(c.fqn) for c in self.components] + [10])
+        for comp in sorted(self.components, key=lambda c: c.fqn):
+            for s in comp.socket_streams:
+                lines.append(f"  {comp.fqn:<{width}}  {s.direction:<3}  socket  {self.options.bind}:{s.port}")
+            for t in comp.text_streams:
+                lines.append(f"  {comp.fqn:<{width}}  OUT  text    {t.path}")
+        out.write("\n".join(lines) + "\n")
+        out.flush()
+
+    def run(self, duration: float | None = None) -> None:
+        try:
+            while not self.quitting:
+                if duration is not None and self.clock.elapsed >= duration - 1e-9:
+                    break
+                self.poller.poll(0.0)
+                if self.quitting:
+                    break
+                if self.sync is not None and self.sync.engaged and not self.sync.take():
+                    self.poller.poll(0.01)
+                    self.service_server.flush()
+                    continue
+                self.step()
+                self.service_server.flush()
+                self._wait(self.clock.delay())
+        finally:
+            self.close()
+
+    def _wait(self, delay: float) -> None:
+        import time
+        end = time.perf_counter() + delay
+        while delay > 0 and not self.quitting:
+            self.poller.poll(delay)
+            self.service_server.flush()
+            delay = end - time.perf_counter()
+
+    def step(self) -> None:
+        m, d = self.model, self.data
+        t = self.clock.elapsed
+        for comp in self.actuators:
+            if comp.active and comp.schedule.due(t):
+                self._tick_actuator(comp)
+        if self.dynamics:
+            mujoco.mj_step(m, d, nstep=self.substeps)
+        else:
+            d.qvel[:] = 0.0
+            mujoco.mj_forward(m, d)
+        for adr, dof, qpos in self.frozen.values():
+            d.qpos[adr:adr + 7] = qpos
+            d.qvel[dof:dof + 6] = 0.0
+        self.clock.tick()
+        t = self.clock.elapsed
+        due = [c for c in self.sensors if c.active and c.schedule.due(t)]
+        if due:
+            mujoco.mj_kinematics(m, d)
+            now = self.clock.now()
+            for comp in due:
+                self._tick_sensor(comp, now)
+        self.time_services.wake()
+
+    def _tick_actuator(self, comp: ComponentRuntime) -> None:
+        message = None
+        for stream in comp.socket_streams:
+            received = stream.take()
+            if received is not None:
+                message = received
+        local = comp.instance.local_data
+        if message is not None:  # a message replaces the whole data dict: unsent fields take their defaults
+            local.clear()
+            for name, default in comp.defaults:
+                local[name] = copy.deepcopy(default)
+            local.update(message)
+        try:
+            comp.instance.default_action()
+        except Exception as err:  # a bad command must not stop the simulation
+            comp.fail_once(err)
+
+    def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
+        inst = comp.instance
+        inst.local_data["timestamp"] = now
+        try:
+            inst.default_action()
+        except Exception as err:
+            comp.fail_once(err)
+            return
+        if any(s.listening for s in comp.socket_streams):
+            line = encode(inst.local_data)
+            for stream in comp.socket_streams:
+                stream.publish(line)
+        for text in comp.text_streams:
+            text.write(inst.local_data)
+
+    def close(self) -> None:
+        for comp in getattr(self, "components", []):
+            for stream in comp.socket_streams:
+                stream.close()
+            for text in comp.text_streams:
+                text.close()
+            comp.socket_streams, comp.text_streams = [], []
+        if getattr(self, "service_server", None) is not None:
+            self.service_server.close()
+            self.service_server = None
+        if getattr(self, "sync", None) is not None:
+            self.sync.close()
+            self.sync = None
+        self.poller.close()
+
+
+def _services_of(obj) -> dict:
+    found = {}
+    for klass in reversed(type(obj).__mro__):
+        for value in vars(klass).values():
+            info = getattr(value, "_morsec_service", None)
+            if info is not None:
+                found[info.name] = info
+    return found

@@ -1,0 +1,145 @@
+"""Dispatch service requests to components, MORSE's way.
+
+A synchronous service answers at once with its return value. An asynchronous one answers when the
+component calls `completed(status, result)`. A second asynchronous call on a busy component preempts the
+running one if that service is interruptible, else fails. `id cancel` aborts a running one (PREEMPTED).
+"""
+
+from __future__ import annotations
+
+import inspect
+import logging
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+from morsec.component import ServiceInfo
+
+log = logging.getLogger("morsec.services")
+
+SUCCESS, FAILED, PREEMPTED = "SUCCESS", "FAILED", "PREEMPTED"
+
+
+@dataclass
+class Request:
+    id: str
+    component: str
+    service: str
+    args: list
+    reply: Callable[[str, str, Any], None]  # (id, status, result)
+    client: Any = None  # the connection it came on, for `cancel`
+    info: ServiceInfo | None = None
+
+
+@dataclass
+class Exposed:
+    obj: Any
+    services: dict[str, ServiceInfo] = field(default_factory=dict)
+
+
+class RequestManager:
+    def __init__(self):
+        self.exposed: dict[str, Exposed] = {}
+        self.running: dict[str, list[Request]] = {}  # component -> async requests in progress
+        self.current: Request | None = None  # the request being dispatched (for async services)
+
+    def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
+        self.exposed[name] = Exposed(obj, dict(services))
+
+    def service_names(self, name: str) -> list[str]:
+        exposed = self.exposed.get(name)
+        return sorted(exposed.services) if exposed else []
+
+    def handle(self, request: Request) -> None:
+        exposed = self.exposed.get(request.component)
+        info = exposed.services.get(request.service) if exposed else None
+        if info is None:
+            request.reply(request.id, FAILED, f"The request {request.service!r} of component {request.component!r} "
+                          "has not been registered in Socket service manager")
+            return
+        method = getattr(exposed.obj, _attribute(exposed.obj, info))
+        try:
+            inspect.signature(method).bind(*request.args)
+        except TypeError as err:
+            request.reply(request.id, FAILED, f"wrong # of parameters for {request.component}.{request.service}: {err}")
+            return
+        request.info = info
+        if info.asynchronous:
+            self._start_async(exposed, request, method)
+            return
+        try:
+            result = method(*request.args)
+        except Exception as err:  # a service's failure is the client's answer, not the simulation's end
+            request.reply(request.id, FAILED, _message(err))
+            return
+        request.reply(request.id, SUCCESS, result)
+
+    def _start_async(self, exposed: Exposed, request: Request, method) -> None:
+        running = self.running.setdefault(request.component, [])
+        concurrent = getattr(method, "_morsec_concurrent", False)
+        if running and not concurrent:
+            old = running[-1]
+            if old.info and old.info.interruptible:
+                running.remove(old)
+                exposed.obj.interrupt()
+                old.reply(old.id, PREEMPTED, None)
+            else:
+                request.reply(request.id, FAILED, f"{request.component}: service {old.service!r} is already running "
+                              "and cannot be interrupted")
+                return
+        running.append(request)
+        self.current = request
+        try:
+            method(*request.args)
+        except Exception as err:
+            if request in running:
+                running.remove(request)
+            request.reply(request.id, FAILED, _message(err))
+        finally:
+            self.current = None
+
+    def complete(self, component: str, status: str, result: Any, request: Request | None = None) -> None:
+        running = self.running.get(component) or []
+        if request is None:
+            if self.current is not None and self.current.component == component:
+                request = self.current
+            elif running:
+                request = running[-1]
+        if request is None or request not in running:
+            return
+        running.remove(request)
+        request.reply(request.id, status, result)
+
+    def cancel(self, client: Any, request_id: str) -> None:
+        for component, running in self.running.items():
+            for request in list(running):
+                if request.client is client and request.id == request_id:
+                    running.remove(request)
+                    self.exposed[component].obj.interrupt()
+                    request.reply(request.id, PREEMPTED, None)
+                    return
+
+    def drop_client(self, client: Any) -> None:
+        """A client went away: its pending requests can no longer be answered."""
+        for running in self.running.values():
+            for request in list(running):
+                if request.client is client:
+                    running.remove(request)
+
+
+def concurrent(fn):
+    """Mark an asynchronous service that may run several times at once (time.sleep)."""
+    fn._morsec_concurrent = True
+    return fn
+
+
+def _attribute(obj: Any, info: ServiceInfo) -> str:
+    for klass in type(obj).__mro__:
+        for attr, value in vars(klass).items():
+            if getattr(value, "_morsec_service", None) is info:
+                return attr
+    return info.name
+
+
+def _message(err: Exception) -> str:
+    text = str(err) or type(err).__name__
+    return text if isinstance(err, (ValueError, KeyError, LookupError)) else f"{type(err).__name__}: {text}"

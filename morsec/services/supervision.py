@@ -1,0 +1,220 @@
+"""The `simulation` pseudo-component: supervision services (reference §3.3)."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+from morsec.component import async_service, service
+from morsec.geometry import euler_to_quat, quat_to_matrix
+
+
+class Supervision:
+    def __init__(self, sim):
+        self.sim = sim
+
+    def interrupt(self) -> None:
+        pass
+
+    @service
+    def list_robots(self) -> list[str]:
+        return [r.name for r in self.sim.robots]
+
+    @service
+    def details(self) -> dict:
+        """The scene's structure, in the shape pymorse reads."""
+        sim = self.sim
+        robots = []
+        for robot in sim.robots:
+            components = {}
+            for comp in sim.components_of(robot.name):
+                entry: dict = {"type": type(comp.instance).__name__}
+                services = sim.requests.service_names(comp.fqn)
+                if services:
+                    entry["services"] = services
+                    entry["service_interfaces"] = [["morsec.middleware.socket_services.ServiceServer"]]
+                streams = [[f"morsec.middleware.{s.middleware}", s.direction] for s in comp.stream_specs]
+                if streams:
+                    entry["stream_interfaces"] = streams
+                components[comp.fqn] = entry
+            robots.append({"name": robot.name, "type": robot.type, "components": components})
+        return {"robots": robots, "environment": sim.scene["environment"]["name"]}
+
+    @service
+    def quit(self) -> None:
+        self.sim.request_quit()
+
+    @service
+    def terminate(self) -> None:
+        self.sim.request_quit(immediate=True)
+
+    @service
+    def reset_objects(self) -> str:
+        self.sim.reset()
+        return "Objects restored to initial position"
+
+    @service
+    def activate(self, component_name: str) -> None:
+        self.sim.component(component_name).active = True
+
+    @service
+    def deactivate(self, component_name: str) -> None:
+        self.sim.component(component_name).active = False
+
+    @service
+    def suspend_dynamics(self) -> None:
+        self.sim.dynamics = False
+
+    @service
+    def restore_dynamics(self) -> None:
+        self.sim.dynamics = True
+
+    @service
+    def set_log_level(self, component: str, level: str) -> None:
+        import logging
+        logging.getLogger(f"morsec.{component}").setLevel(str(level).upper())
+
+    @service
+    def list_streams(self) -> list[str]:
+        return sorted(self.sim.socket_ports)
+
+    @service
+    def get_stream_port(self, name: str) -> int:
+        if name not in self.sim.socket_ports:
+            raise ValueError(f"Stream unavailable for component {name}")
+        return self.sim.socket_ports[name]
+
+    @service
+    def get_all_stream_ports(self) -> dict:
+        return dict(sorted(self.sim.socket_ports.items()))
+
+    @service
+    def get_scene_objects(self) -> dict:
+        """{name: [children, [x, y, z], [qx, qy, qz, qw]]} for robots (children: components) and objects."""
+        d = self.sim.data
+        out = {}
+        for name, body in self.sim.scene_bodies().items():
+            children = {}
+            for comp in self.sim.components_of(name):
+                if comp.parent == name:
+                    children[comp.fqn] = _entry(d, comp.instance.body_id, {})
+            out[name] = _entry(d, body, children)
+        return out
+
+    @service
+    def set_object_position(self, object_name: str, position, orientation=None) -> None:
+        body = self.sim.scene_bodies().get(object_name)
+        if body is None:
+            raise ValueError(f"unknown object {object_name!r}")
+        pos = np.asarray(position, dtype=float)
+        if pos.shape != (3,) or not np.all(np.isfinite(pos)):
+            raise ValueError("position must be [x, y, z]")
+        if orientation is None:
+            rot = self.sim.data.xmat[body].reshape(3, 3).copy()
+        else:
+            rpy = np.asarray(orientation, dtype=float)
+            if rpy.shape != (3,) or not np.all(np.isfinite(rpy)):
+                raise ValueError("orientation must be [roll, pitch, yaw]")
+            rot = quat_to_matrix(euler_to_quat(*rpy))
+        self.sim.place_body(body, pos, rot)
+
+    @service
+    def set_object_dynamics(self, object_name: str, state: bool) -> None:
+        body = self.sim.scene_bodies().get(object_name)
+        if body is None:
+            raise ValueError(f"unknown object {object_name!r}")
+        self.sim.set_frozen(body, not bool(state))
+
+
+def _entry(d, body: int, children: dict) -> list:
+    w, x, y, z = d.xquat[body]
+    return [children, [float(v) for v in d.xpos[body]], [float(x), float(y), float(z), float(w)]]
+
+
+class TimeServices:
+    """The `time` pseudo-component."""
+
+    def __init__(self, sim):
+        self.sim = sim
+        self.sleepers: list = []  # (deadline in simulated seconds, request)
+
+    def interrupt(self) -> None:
+        pass
+
+    @service
+    def now(self) -> float:
+        return self.sim.clock.now()
+
+    @service
+    def mode(self) -> str:
+        return "Fixed Simulation Step" if self.sim.clock.strategy == "fixed_step" else "Best Effort"
+
+    @service
+    def statistics(self) -> dict:
+        return self.sim.clock.statistics()
+
+    @service
+    def set_time_scale(self, value: float) -> bool:
+        value = float(value)
+        if not math.isfinite(value) or value <= 0:
+            raise ValueError("time scale must be a positive number")
+        self.sim.clock.set_scale(value)
+        return True
+
+    @async_service
+    def sleep(self, time: float) -> None:
+        delay = float(time)
+        if not math.isfinite(delay):
+            raise ValueError("sleep time must be a finite number of seconds")
+        self.sleepers.append((self.sim.clock.elapsed + max(0.0, delay), self.sim.requests.current))
+        self.wake()
+
+    sleep._morsec_concurrent = True
+
+    def wake(self) -> None:
+        elapsed = self.sim.clock.elapsed
+        due = [s for s in self.sleepers if s[0] <= elapsed + 1e-9]
+        for item in due:
+            self.sleepers.remove(item)
+            self.sim.requests.complete("time", "SUCCESS", None, item[1])
+
+
+class Communication:
+    """The `communication` pseudo-component."""
+
+    def __init__(self, sim):
+        self.sim = sim
+
+    def interrupt(self) -> None:
+        pass
+
+    @service
+    def distance_and_view(self, robot1: str, robot2: str) -> list:
+        bodies = self.sim.scene_bodies()
+        for name in (robot1, robot2):
+            if name not in bodies:
+                raise ValueError(f"unknown robot {name!r}")
+        m, d = self.sim.model, self.sim.data
+        a, b = bodies[robot1], bodies[robot2]
+        pa, pb = d.xpos[a].copy(), d.xpos[b].copy()
+        delta = pb - pa
+        distance = float(np.linalg.norm(delta))
+        if distance == 0:
+            return [0.0, True]
+        direction = delta / distance
+        origin, travelled = pa.copy(), 0.0
+        geom = np.zeros(1, dtype=np.int32)
+        for _ in range(8):  # step past the first robot's own geoms
+            hit = mujoco.mj_ray(m, d, origin, direction, None, 1, -1, geom)
+            if hit < 0 or travelled + hit >= distance:
+                return [distance, True]
+            root = m.body_rootid[m.geom_bodyid[geom[0]]]
+            if root == m.body_rootid[b]:
+                return [distance, True]
+            if root != m.body_rootid[a]:
+                return [distance, False]
+            travelled += hit + 1e-4
+            origin = pa + direction * travelled
+        return [distance, False]
