@@ -103,6 +103,22 @@ def run(
 
 
 @app.command()
+def docs(
+    out: Annotated[Path, typer.Option("-o", "--out", help="docs folder to write the generated pages into")] = Path("docs"),
+) -> None:
+    """Regenerate the reference pages (scene-format.md, components.md) from the models and the catalogue."""
+    from morsec.catalogue import load_catalogue
+    from morsec.docsgen import write_docs
+    try:
+        for path in write_docs(out, load_catalogue()):
+            typer.echo(f"wrote {path}")
+    except MorsecError as err:
+        fail(err)
+    except OSError as err:
+        fail(MorsecError(f"{out}: cannot write the docs: {err.strerror or err}"))
+
+
+@app.command()
 def version() -> None:
     """Print the versions of morsec and MuJoCo."""
     import mujoco

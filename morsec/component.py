@@ -192,6 +192,15 @@ class Device(Component):
         from morsec.geometry import matrix_to_euler
         return matrix_to_euler(self.rotation())
 
+    def velocity(self, local: bool = True):
+        """(linear, angular) velocity of this component's frame, in its own frame or the world's."""
+        import mujoco
+        import numpy as np
+        res = np.zeros(6)
+        mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_BODY, self.body_id, res,
+                                 1 if local else 0)
+        return res[3:], res[:3]
+
 
 TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s (Unix epoch unless relative time)")
 

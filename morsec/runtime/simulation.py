@@ -25,6 +25,7 @@ from morsec.middleware.socket_services import ServiceServer
 from morsec.middleware.socket_streams import SocketStream, encode
 from morsec.middleware.sync import SyncServer
 from morsec.middleware.text import TextStream
+from morsec.modifiers.registry import modifier_class
 from morsec.runtime.clock import Clock, Periodic
 from morsec.runtime.robot import RobotHandle
 from morsec.scene.models import StreamSpec
@@ -69,6 +70,7 @@ class ComponentRuntime:
     defaults: list = field(default_factory=list)  # (name, default) of the data fields, for actuator input
     socket_streams: list[SocketStream] = field(default_factory=list)
     text_streams: list[TextStream] = field(default_factory=list)
+    modifiers: list = field(default_factory=list)
     active: bool = True
     errors: set = field(default_factory=set)
 
@@ -84,6 +86,31 @@ class RobotInfo:
     name: str
     type: str
     handle: RobotHandle
+
+
+@dataclass
+class SceneObject:
+    """A robot or a passive object, with the property bag sensors read (Label, Object, Fire, tags ...)."""
+
+    name: str
+    body_id: int
+    kind: str  # "robot" | "object"
+    properties: dict
+
+    def has(self, tag: str) -> bool:
+        return bool(self.properties.get(tag)) or self.properties.get("Type") == tag
+
+
+@dataclass
+class Zone:
+    name: str
+    type: str
+    center: np.ndarray
+    half: np.ndarray
+    properties: dict
+
+    def contains(self, point) -> bool:
+        return bool(np.all(np.abs(np.asarray(point) - self.center) <= self.half))
 
 
 class Simulation:
@@ -104,8 +131,7 @@ class Simulation:
         self.substeps = int(loop["physics_substeps"])
         self.clock = Clock(float(loop["frequency"]), self.options.strategy or env["time"]["strategy"],
                            self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
-        seed = self.options.seed if self.options.seed is not None else env.get("seed")
-        self.rng = np.random.default_rng(seed)
+        self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
@@ -120,6 +146,9 @@ class Simulation:
         self.by_name = {c.fqn: c for c in self.components}
         self.actuators = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "actuator"]
         self.sensors = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "sensor"]
+        self.objects = self._scene_objects()
+        self.zones = [Zone(z["name"], z["type"], np.array(z["translate"], float), np.array(z["size"], float) / 2,
+                           dict(z["properties"])) for z in self.scene["zones"]]
         self.initial_state = (self.data.qpos.copy(), self.data.qvel.copy(), self.data.act.copy(),
                               self.model.body_pos.copy(), self.model.body_quat.copy())
         for comp in self.components:
@@ -151,13 +180,18 @@ class Simulation:
                                    cls.Properties.model_validate(entry["properties"]), entry["level"],
                                    float(entry["frequency"]), configuration)
         instance = impl(context)
-        if entry["modifiers"]:
-            log.warning("%s: modifiers are recorded but not applied by this version", entry["fqn"])
+        env_properties = self.scene["environment"]["properties"]
+        modifiers = []
+        for k, spec in enumerate(entry["modifiers"]):
+            mod_cls = modifier_class(spec["name"], cls)
+            params = mod_cls.resolve_params({key: v for key, v in spec.items() if key != "name"}, env_properties)
+            modifiers.append(mod_cls(params, self.rng_for(entry["fqn"], k, spec["name"]), self))
         return ComponentRuntime(
             fqn=entry["fqn"], parent=entry["parent"], robot=entry["robot"], kind=entry["kind"], instance=instance,
             schedule=Periodic(float(entry["frequency"]), self.clock.dt),
             stream_specs=[StreamSpec.model_validate(s) for s in entry["streams"]],
             defaults=[(f.name, f.default) for f in impl.fields_at(entry["level"])],
+            modifiers=modifiers,
         )
 
     def _bind(self, middleware: dict) -> None:
@@ -181,14 +215,48 @@ class Simulation:
                 if "socket" in middlewares:
                     comp = self.by_name[fqn]
                     self.requests.expose(fqn, comp.instance, type(comp.instance).services())
-            port = opts.service_port or middleware["service_port"]
-            attempts = 1 if opts.service_port else SERVICE_PORT_ATTEMPTS + 1
+            port = opts.service_port if opts.service_port is not None else middleware["service_port"]
+            attempts = 1 if opts.service_port is not None else SERVICE_PORT_ATTEMPTS + 1
             self.service_server = ServiceServer(self.poller, self.requests, opts.bind, port, attempts)
             sync = middleware["stream_managers"].get("socket", {})
             self.sync = SyncServer(self.poller, opts.bind, sync["sync_port"]) if sync.get("time_sync") else None
         except OSError as err:
             self.close()
             raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: {err.strerror or err}") from None
+
+    def _scene_objects(self) -> list[SceneObject]:
+        out = []
+        for r in self.scene["robots"]:
+            body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, r["name"])
+            out.append(SceneObject(r["name"], body, "robot", {"Robot_Tag": True, **r["properties"]}))
+        for o in self.scene["objects"]:
+            body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, o["name"])
+            out.append(SceneObject(o["name"], body, "object", dict(o["properties"])))
+        return out
+
+    # ---------------------------------------------------------------- queries used by components
+    def objects_with(self, tag: str) -> list[SceneObject]:
+        """Robots and objects whose property `tag` is truthy (or whose Type is `tag`)."""
+        return [o for o in self.objects if o.has(tag)]
+
+    def zones_at(self, point, zone_type: str | None = None) -> list[Zone]:
+        return [z for z in self.zones if (zone_type is None or z.type == zone_type) and z.contains(point)]
+
+    @property
+    def geo(self):
+        """The scene's geodetic frame (environment longitude/latitude/altitude); ValueError if not set."""
+        if getattr(self, "_geo", None) is None:
+            from morsec.geodesy import GeoFrame
+            self._geo = GeoFrame.from_properties(self.scene["environment"]["properties"])
+        return self._geo
+
+    def rng_for(self, *key: str | int) -> np.random.Generator:
+        """An independent random stream per (component, modifier): same seed, same numbers, whatever else
+        the scene holds. Without a seed, fresh entropy."""
+        import zlib
+        if self.seed is None:
+            return np.random.default_rng()
+        return np.random.default_rng([self.seed] + [zlib.crc32(str(k).encode()) for k in key])
 
     # ---------------------------------------------------------------- queries used by services
     def components_of(self, robot: str) -> list[ComponentRuntime]:
@@ -327,6 +395,9 @@ class Simulation:
                 local[name] = copy.deepcopy(default)
             local.update(message)
         try:
+            if message is not None:
+                for modifier in comp.modifiers:
+                    modifier.modify(local)
             comp.instance.default_action()
         except Exception as err:  # a bad command must not stop the simulation
             comp.fail_once(err)
@@ -336,6 +407,8 @@ class Simulation:
         inst.local_data["timestamp"] = now
         try:
             inst.default_action()
+            for modifier in comp.modifiers:
+                modifier.modify(inst.local_data)
         except Exception as err:
             comp.fail_once(err)
             return

@@ -14,6 +14,7 @@ from pydantic_core import PydanticCustomError
 
 from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
 from morsec.errors import did_you_mean
+from morsec.modifiers.registry import MODIFIERS as MODIFIER_TABLE
 
 
 class Strict(BaseModel):
@@ -80,7 +81,8 @@ class StreamSpec(Strict):
     direction: Literal["IN", "OUT"] | None = Field(None, description="default: OUT for sensors, IN for actuators")
 
 
-Stream = Annotated[StreamSpec, BeforeValidator(_stream_shorthand)]
+# `streams: [socket]` is shorthand for `streams: [{middleware: socket}]`; the JSON Schema accepts both spellings
+Stream = Annotated[StreamSpec, BeforeValidator(_stream_shorthand, json_schema_input_type=Union[Middleware, StreamSpec])]
 
 
 class ModifierSpec(Strict):
@@ -103,14 +105,14 @@ class ModifierSpec(Strict):
         return self
 
 
-MODIFIERS = ("noise", "posenoise", "imunoise", "odometrynoise", "ned", "utm", "ecef", "geodetic", "geocentric", "feet")
+MODIFIERS = tuple(MODIFIER_TABLE)
 
 
 class OverlaySpec(Strict):
     """`add_overlay(middleware, overlay, **kwargs)`: services renamed or reshaped for one middleware."""
 
     model_config = ConfigDict(extra="allow", allow_inf_nan=False)
-    middleware: ServiceMiddleware
+    middleware: ServiceMiddleware = Field(description="the middleware whose services are overlaid")
     overlay: str = Field(description="overlay class path")
 
 
@@ -203,9 +205,9 @@ class CameraSpec(Strict):
 
 
 class MultinodeSpec(Strict):
-    protocol: Literal["socket", "hla"] = "socket"
-    server_address: str = "localhost"
-    server_port: Annotated[int, Field(ge=1, le=65535)] = 65000
+    protocol: Literal["socket", "hla"] = Field("socket", description="multinode protocol")
+    server_address: str = Field("localhost", description="address of the multinode server")
+    server_port: Annotated[int, Field(ge=1, le=65535)] = Field(65000, description="port of the multinode server")
     distribution: dict[str, list[Name]] = Field(default_factory=dict, description="node name -> robot names")
 
 
@@ -217,8 +219,9 @@ class StreamManagerSpec(Strict):
 
 
 class ViewportSpec(Strict):
-    shade: Literal["BOUNDBOX", "WIREFRAME", "SOLID", "TEXTURED", "MATERIAL", "RENDERED"] = "SOLID"
-    clip_end: Positive = 1000.0
+    shade: Literal["BOUNDBOX", "WIREFRAME", "SOLID", "TEXTURED", "MATERIAL", "RENDERED"] = Field(
+        "SOLID", description="viewport_shade: display mode")
+    clip_end: Positive = Field(1000.0, description="clip_end: farthest visible distance, m")
 
 
 class EnvironmentBase(Strict):
@@ -227,8 +230,8 @@ class EnvironmentBase(Strict):
     name: str = Field("empty", description="environment id: empty, sandbox, indoors-1/boxes, ...")
     fastmode: bool = Field(False, description="Environment(..., fastmode=True): wireframe display")
     gravity: Annotated[float, Field(ge=0, allow_inf_nan=False)] = Field(9.81, description="set_gravity, m/s^2")
-    time: TimeSpec = Field(default_factory=TimeSpec)
-    camera: CameraSpec = Field(default_factory=CameraSpec)
+    time: TimeSpec = Field(default_factory=TimeSpec, description="time strategy and main-loop frequency")
+    camera: CameraSpec = Field(default_factory=CameraSpec, description="the viewer's camera")
     properties: PropertyBag = Field(
         default_factory=dict, description="env.properties: longitude, latitude (deg), altitude (m), ...")
     services: list[ServiceMiddleware] = Field(
@@ -237,15 +240,15 @@ class EnvironmentBase(Strict):
         default_factory=dict, description="configure_stream_manager")
     multinode: MultinodeSpec | None = Field(None, description="configure_multinode")
     seed: Annotated[int, Field(ge=0)] | None = Field(None, description="random seed for noise modifiers")
-    show_framerate: bool = False
-    show_physics: bool = False
-    show_debug: bool = False
+    show_framerate: bool = Field(False, description="show_framerate: display the frame rate (viewer)")
+    show_physics: bool = Field(False, description="show_physics: display collision shapes (viewer)")
+    show_debug: bool = Field(False, description="show_debug_properties: display debug information (viewer)")
     viewport: ViewportSpec = Field(default_factory=ViewportSpec, description="set_viewport")
-    auto_start: bool = True
-    fullscreen: bool = False
+    auto_start: bool = Field(True, description="auto_start: start the simulation when loaded")
+    fullscreen: bool = Field(False, description="fullscreen: full-screen viewer window")
     stereo: Literal["NONE", "STEREO", "DOME", "ANAGLYPH", "QUADBUFFERED", "ABOVEBELOW", "INTERLACED",
-                    "VINTERLACE", "SIDEBYSIDE"] = "NONE"
-    debug: bool = False
+                    "VINTERLACE", "SIDEBYSIDE"] = Field("NONE", description="set_stereo: stereo display mode")
+    debug: bool = Field(False, description="set_debug: verbose simulator logging")
     morse_only: dict[str, Any] = Field(
         default_factory=dict, description="MORSE settings with no MuJoCo meaning, recorded as given")
 
@@ -253,10 +256,10 @@ class EnvironmentBase(Strict):
 class SceneBase(Strict):
     """A morsec scene."""
 
-    environment: EnvironmentBase = Field(default_factory=EnvironmentBase)
-    robots: list[Any] = Field(default_factory=list)
-    objects: list[ObjectSpec] = Field(default_factory=list)
-    zones: list[ZoneSpec] = Field(default_factory=list)
+    environment: EnvironmentBase = Field(default_factory=EnvironmentBase, description="the world and global settings")
+    robots: list[Any] = Field(default_factory=list, description="robots and their components")
+    objects: list[ObjectSpec] = Field(default_factory=list, description="passive objects")
+    zones: list[ZoneSpec] = Field(default_factory=list, description="zones")
     _source: Any = PrivateAttr(None)  # the SourceMap of the file it came from, to place compile errors
 
 

@@ -14,7 +14,7 @@ from typing import Any
 
 import yaml
 
-from morsec.errors import SceneError
+from morsec.errors import SceneError, yaml_path
 
 Path = tuple
 Position = tuple[int, int]
@@ -63,8 +63,8 @@ def _yaml_error(err: yaml.YAMLError, file: str, what: str) -> SceneError:
     mark = getattr(err, "problem_mark", None) or getattr(err, "context_mark", None)
     problem = getattr(err, "problem", None) or str(err).splitlines()[0]
     context = getattr(err, "context", None)
-    if context and "while" not in context:
-        problem = f"{problem} ({context})"
+    if context and not context.startswith("while") and problem.startswith("but "):
+        problem = f"{context}, {problem}"  # "expected a single document in the stream, but found another document"
     line, col = (mark.line + 1, mark.column + 1) if mark else (None, None)
     return SceneError(f"{what}: {problem}", file, line, col)
 
@@ -102,7 +102,8 @@ def _yaml_node(node: yaml.Node, path: Path, smap: SourceMap, constructor: yaml.S
             if key in out:
                 if any(key_node is k for k, _ in merged):
                     continue  # merged keys never override what is written
-                raise SceneError(f"duplicate key {key!r}: each key may appear once in a mapping",
+                where = yaml_path(path + (key,))
+                raise SceneError(f"{where}: duplicate key {key!r}: each key may appear once in a mapping",
                                  smap.file, *_at(key_node))
             child = path + (key,)
             smap.keys[child] = _at(key_node)

@@ -30,8 +30,9 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     assign_names(scene.zones, default=lambda z: z.type,
                  on_duplicate=lambda i, name: fail(("zones", i, "name"), f"duplicate zone name {name!r}"))
 
+    env_properties = scene.environment.properties
     for r, robot in enumerate(scene.robots):
-        _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail)
+        _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail, env_properties)
 
     multinode = scene.environment.multinode
     if multinode is not None:
@@ -43,7 +44,8 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
                          f"multinode node {node!r} lists robot {name!r}, which is not in the scene")
 
 
-def _resolve_children(components: list, parent_path: tuple, default_interface: str | None, cat: Catalogue, fail):
+def _resolve_children(components: list, parent_path: tuple, default_interface: str | None, cat: Catalogue, fail,
+                      env_properties: dict):
     for c in components:
         c.type = cat.resolve("sensors", c.type) or cat.resolve("actuators", c.type)
     assign_names(components, default=lambda c: c.type,
@@ -67,7 +69,31 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
         for stream in comp.streams:
             if stream.direction is None:
                 stream.direction = cls.direction
-        _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail)
+        for m, modifier in enumerate(comp.modifiers):
+            _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties)
+        _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
+                          env_properties)
+
+
+def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict) -> None:
+    from pydantic import ValidationError
+
+    from morsec.modifiers.registry import applicable, modifier_class
+    impl = modifier_class(modifier.name, cls)
+    if impl is None:
+        fail(path + ("name",), f"modifier {modifier.name!r} does not apply to {cls.id!r} "
+                               f"(it applies to: {', '.join(applicable(modifier.name))})")
+    missing = [k for k in ("longitude", "latitude", "altitude") if k not in env_properties]
+    if impl.needs_geo and missing:
+        fail(path + ("name",), f"modifier {modifier.name!r} needs the environment properties longitude, latitude "
+                               f"and altitude (missing: {', '.join(missing)})")
+    try:
+        impl.Params.model_validate(modifier.model_extra or {})
+    except ValidationError as err:
+        e = err.errors(include_url=False)[0]
+        key = e["loc"][0] if e["loc"] else None
+        where = path + ((key,) if key is not None else ())
+        fail(where, f"modifier {modifier.name!r}: {key + ': ' if key else ''}{e['msg']}")
 
 
 def _add_stream(comp, cls, middleware: str) -> None:

@@ -1,0 +1,35 @@
+"""What a modifier is: validated parameters (keyword -> environment property -> default) and `modify`."""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict
+
+
+class ModifierParams(BaseModel):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+
+
+class Modifier:
+    Params: ClassVar[type[ModifierParams]] = ModifierParams
+    # environment property read when a parameter is not given: {param: env property}
+    env_defaults: ClassVar[dict[str, str]] = {}
+    needs_geo: ClassVar[bool] = False  # needs the environment's longitude, latitude and altitude
+
+    def __init__(self, params: ModifierParams, rng: np.random.Generator, sim: Any = None):
+        self.params = params
+        self.rng = rng
+        self.sim = sim
+
+    @classmethod
+    def resolve_params(cls, given: dict, env_properties: dict) -> ModifierParams:
+        values = dict(given)
+        for param, prop in cls.env_defaults.items():
+            if param not in values and prop in env_properties:
+                values[param] = env_properties[prop]
+        return cls.Params.model_validate(values)
+
+    def modify(self, data: dict) -> None:
+        raise NotImplementedError

@@ -1,0 +1,129 @@
+"""Gaussian noise, no bias (MORSE's Noise / PoseNoise / IMUNoise / odometry noise)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from pydantic import ConfigDict, Field
+
+from morsec.geometry import normalize_angle
+from morsec.modifiers.base import Modifier, ModifierParams
+
+Std = float | dict[str, float]
+
+
+def _std(value: Std, axis: str) -> float:
+    return float(value.get(axis, 0.0)) if isinstance(value, dict) else float(value)
+
+
+class PoseNoiseParams(ModifierParams):
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, populate_by_name=True)
+    pos_std: Std = Field(0.05, description="m; a number or {x, y, z}")
+    rot_std: Std = Field(math.radians(5), description="rad; a number or {roll, pitch, yaw}")
+    planar: bool = Field(False, alias="_2D", description="_2D: only x, y and yaw")
+
+
+class PoseNoise(Modifier):
+    """x, y, z += N(0, pos_std); roll, pitch, yaw += N(0, rot_std) (with _2D: x, y, yaw only)."""
+
+    Params = PoseNoiseParams
+
+    def modify(self, data: dict) -> None:
+        p = self.params
+        axes = ("x", "y") if p.planar else ("x", "y", "z")
+        angles = ("yaw",) if p.planar else ("roll", "pitch", "yaw")
+        for axis in axes:
+            if axis in data:
+                data[axis] = float(data[axis]) + self.rng.normal(0.0, _std(p.pos_std, axis))
+        for axis in angles:
+            if axis in data:
+                data[axis] = normalize_angle(float(data[axis]) + self.rng.normal(0.0, _std(p.rot_std, axis)))
+
+
+class PositionNoise(PoseNoise):
+    """x, y, z += N(0, pos_std) (GPS)."""
+
+    def modify(self, data: dict) -> None:
+        p = self.params
+        for axis in (("x", "y") if p.planar else ("x", "y", "z")):
+            if axis in data:
+                data[axis] = float(data[axis]) + self.rng.normal(0.0, _std(p.pos_std, axis))
+
+
+class OrientationNoise(PoseNoise):
+    """roll, pitch, yaw += N(0, rot_std) (gyroscope)."""
+
+    def modify(self, data: dict) -> None:
+        p = self.params
+        for axis in (("yaw",) if p.planar else ("roll", "pitch", "yaw")):
+            if axis in data:
+                data[axis] = normalize_angle(float(data[axis]) + self.rng.normal(0.0, _std(p.rot_std, axis)))
+
+
+class IMUNoiseParams(ModifierParams):
+    gyro_std: Std = Field(0.5, description="rad/s; a number or {x, y, z}")
+    accel_std: Std = Field(0.5, description="m/s^2; a number or {x, y, z}")
+
+
+class IMUNoise(Modifier):
+    """angular_velocity += N(0, gyro_std), linear_acceleration += N(0, accel_std), per axis."""
+
+    Params = IMUNoiseParams
+
+    def modify(self, data: dict) -> None:
+        for field, std in (("angular_velocity", self.params.gyro_std), ("linear_acceleration", self.params.accel_std)):
+            if field in data:
+                noise = [self.rng.normal(0.0, _std(std, axis)) for axis in "xyz"]
+                data[field] = [float(v) + n for v, n in zip(data[field], noise)]
+
+
+class OdometryNoiseParams(ModifierParams):
+    factor: float = Field(1.05, description="scale error on travelled distances")
+    factor_sigma: float = Field(0.0, ge=0)
+    gyro_drift: float = Field(0.0, description="rad added to the heading each tick")
+    gyro_drift_sigma: float = Field(0.0, ge=0)
+
+
+class OdometryNoise(Modifier):
+    """Odometry scale error and heading drift: deltas scaled and drifted; the integrated level is
+    re-integrated from the noisy deltas."""
+
+    Params = OdometryNoiseParams
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.true_prev: tuple[float, float, float] | None = None
+        self.noisy = np.zeros(3)  # x, y, yaw
+
+    def _factor(self) -> float:
+        p = self.params
+        return p.factor + (self.rng.normal(0.0, p.factor_sigma) if p.factor_sigma else 0.0)
+
+    def _drift(self) -> float:
+        p = self.params
+        return p.gyro_drift + (self.rng.normal(0.0, p.gyro_drift_sigma) if p.gyro_drift_sigma else 0.0)
+
+    def modify(self, data: dict) -> None:
+        if "dS" in data:
+            data["dS"] = float(data["dS"]) * self._factor()
+        if "dx" in data:
+            f = self._factor()
+            for key in ("dx", "dy", "dz"):
+                data[key] = float(data[key]) * f
+            data["dyaw"] = normalize_angle(float(data["dyaw"]) + self._drift())
+        if "x" in data and "yaw" in data:
+            x, y, yaw = float(data["x"]), float(data["y"]), float(data["yaw"])
+            if self.true_prev is None:
+                self.true_prev = (x, y, yaw)
+                self.noisy[:] = (x, y, yaw)
+            px, py, pyaw = self.true_prev
+            c, s = math.cos(pyaw), math.sin(pyaw)
+            local = np.array([c * (x - px) + s * (y - py), -s * (x - px) + c * (y - py)]) * self._factor()
+            dyaw = normalize_angle(yaw - pyaw) + self._drift()
+            nyaw = self.noisy[2]
+            self.noisy[0] += math.cos(nyaw) * local[0] - math.sin(nyaw) * local[1]
+            self.noisy[1] += math.sin(nyaw) * local[0] + math.cos(nyaw) * local[1]
+            self.noisy[2] = normalize_angle(nyaw + dyaw)
+            self.true_prev = (x, y, yaw)
+            data["x"], data["y"], data["yaw"] = (float(v) for v in self.noisy)

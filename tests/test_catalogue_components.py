@@ -1,0 +1,185 @@
+"""Every robot and environment of the catalogue, built into a tiny scene with the real compiler and run
+in MuJoCo: the URDF is valid for ROS tools, the MJCF loads, and a robot left alone stays where it was put."""
+
+from __future__ import annotations
+
+import math
+import shutil
+import subprocess
+
+import mujoco
+import numpy as np
+import pytest
+import yourdfpy
+
+from morsec.catalogue import load_catalogue
+from morsec.compiler.urdf import expand_xacro
+
+CATALOGUE = load_catalogue()
+ROBOTS = CATALOGUE.ids("robots")
+ENVIRONMENTS = CATALOGUE.ids("environments")
+# robots naming a left and a right drive wheel (MORSE's WheeledRobot properties)
+DIFFERENTIAL = [r for r in ROBOTS
+                if {"WheelFLName", "WheelFRName"} <= set(CATALOGUE.get("robots", r).Properties.model_fields)]
+
+SETTLE_S = 5.0
+MAX_DRIFT_M = 0.01
+MAX_TILT = math.radians(3.0)
+FLOAT_HEIGHT_M = 1.0  # NoGravity robots start in the air: without gravity compensation they would fall
+
+
+def robot_scene(robot_id: str, z: float) -> str:
+    return f"environment: {{name: empty}}\nrobots:\n  - {{name: r, type: {robot_id}, translate: [0.0, 0.0, {z}]}}\n"
+
+
+def run(model: mujoco.MjModel, data: mujoco.MjData, seconds: float) -> None:
+    mujoco.mj_step(model, data, nstep=round(seconds / model.opt.timestep))
+    assert np.isfinite(data.qpos).all()
+    warnings = {mujoco.mjtWarning(i).name: w.number for i, w in enumerate(data.warning) if w.number}
+    assert not warnings, f"MuJoCo warnings: {warnings}"
+
+
+def subtree_bodies(model: mujoco.MjModel, root: int) -> list[int]:
+    return [b for b in range(model.nbody) if b == root or _has_ancestor(model, b, root)]
+
+
+def _has_ancestor(model: mujoco.MjModel, body: int, ancestor: int) -> bool:
+    while body:
+        body = model.body_parentid[body]
+        if body == ancestor:
+            return True
+    return False
+
+
+def test_catalogue_has_robots_and_environments():
+    assert ROBOTS and ENVIRONMENTS
+
+
+@pytest.mark.parametrize("robot_id", ROBOTS)
+def test_robot_folder_documents_itself(robot_id):
+    cls = CATALOGUE.get("robots", robot_id)
+    assert (cls.folder / "README.md").is_file()
+    assert (cls.folder / cls.xacro).is_file()
+    assert cls.doc() and cls.short_descr
+
+
+@pytest.mark.parametrize("robot_id", ROBOTS)
+def test_robot_urdf_is_valid(robot_id, build_yaml):
+    cls = CATALOGUE.get("robots", robot_id)
+    out = build_yaml(robot_scene(robot_id, 0.0))
+    path = out / "robots" / "r.urdf"
+
+    urdf = yourdfpy.URDF.load(str(path), build_scene_graph=True, load_meshes=False, load_collision_meshes=False)
+    assert urdf.validate()
+    assert urdf.robot.name == "r"
+    assert urdf.base_link
+    links = {link.name for link in urdf.robot.links}
+    # wheel names given as properties (MORSE's WheeledRobot) name links of the robot
+    for prop, value in cls.Properties().model_dump().items():
+        if prop.endswith("Name") and (prop.startswith("Wheel") or prop == "CasterWheelName"):
+            assert value in links, f"{prop}={value!r} is not a link of {robot_id}"
+
+    check_urdf = shutil.which("check_urdf")
+    if check_urdf is None:
+        pytest.skip("check_urdf (liburdfdom-tools) is not installed")
+    result = subprocess.run([check_urdf, str(path)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "Successfully Parsed XML" in result.stdout
+
+
+@pytest.mark.parametrize("robot_id", ROBOTS)
+def test_robot_left_alone_stays_put(robot_id, build_yaml):
+    cls = CATALOGUE.get("robots", robot_id)
+    floats = cls.Properties().NoGravity
+    start_z = FLOAT_HEIGHT_M if floats else 0.0
+    out = build_yaml(robot_scene(robot_id, start_z))
+    urdf = yourdfpy.URDF.load(str(out / "robots" / "r.urdf"), build_scene_graph=False, load_meshes=False,
+                              load_collision_meshes=False)
+    urdf_mass = sum(link.inertial.mass for link in urdf.robot.links if link.inertial is not None)
+
+    model = mujoco.MjModel.from_xml_path(str(out / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    body = model.body("r").id
+    bodies = subtree_bodies(model, body)
+    assert model.body_subtreemass[body] == pytest.approx(urdf_mass, rel=1e-9, abs=1e-12)
+    if not cls.collision:
+        assert all(model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0
+                   for g in range(model.ngeom) if model.geom_bodyid[g] in bodies)
+    start = data.xpos[body].copy()
+    assert start[2] == pytest.approx(start_z + cls.spawn_height)
+
+    run(model, data, SETTLE_S)
+    moved = data.xpos[body] - start
+    z_axis = data.xmat[body].reshape(3, 3)[:, 2]
+    tilt = math.acos(min(1.0, float(z_axis[2])))
+    if cls.static:
+        assert model.body_jntnum[body] == 0 and model.body_dofnum[body] == 0
+        assert np.allclose(moved, 0.0) and tilt == 0.0
+        return
+    assert model.jnt_type[model.body_jntadr[body]] == mujoco.mjtJoint.mjJNT_FREE
+    assert math.hypot(moved[0], moved[1]) < MAX_DRIFT_M, f"drifted {moved}"
+    # standing on the ground (spawn_height right) or floating: no fall, no jump
+    assert abs(moved[2]) < MAX_DRIFT_M, f"moved vertically by {moved[2]:.4f} m"
+    assert tilt < MAX_TILT, f"tipped by {math.degrees(tilt):.1f} deg"
+
+
+def _link_count(robot_id: str) -> int:
+    cls = CATALOGUE.get("robots", robot_id)
+    return expand_xacro(cls.folder / cls.xacro, {"name": "r"}).count("<link ")
+
+
+# Known compiler bug: templates/mjcf/robot.xml.j2 writes gravcomp="1" on the root body only, so the other
+# links of a NoGravity robot (wheels) keep their weight and pull it down. Strict: a fix makes these XPASS.
+GRAVCOMP_ROOT_ONLY = pytest.mark.xfail(strict=True, reason="gravcomp is emitted on the root link only")
+MOVABLE = [pytest.param(r, marks=GRAVCOMP_ROOT_ONLY) if _link_count(r) > 1 else r
+           for r in ROBOTS if not CATALOGUE.get("robots", r).static]
+
+
+@pytest.mark.parametrize("robot_id", MOVABLE)
+def test_robot_with_no_gravity_floats(robot_id, build_yaml):
+    """set NoGravity on any robot: it holds its pose in the air (MORSE's anti-gravity force)."""
+    out = build_yaml(f"robots:\n  - {{name: r, type: {robot_id}, translate: [0.0, 0.0, {FLOAT_HEIGHT_M}], "
+                     "properties: {NoGravity: true}}\n")
+    model = mujoco.MjModel.from_xml_path(str(out / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    body = model.body("r").id
+    start = data.xpos[body].copy()
+    run(model, data, 2.0)
+    assert np.linalg.norm(data.xpos[body] - start) < MAX_DRIFT_M
+
+
+@pytest.mark.parametrize("robot_id", DIFFERENTIAL)
+def test_differential_robot_wheel_joints(robot_id, build_yaml):
+    """Robots naming a left and a right wheel (WheelFLName / WheelFRName, MORSE's WheeledRobot) drive
+    them through continuous joints wheel_left_joint / wheel_right_joint about y."""
+    props = CATALOGUE.get("robots", robot_id).Properties().model_dump()
+    model = mujoco.MjModel.from_xml_path(str(build_yaml(robot_scene(robot_id, 0.0)) / "scene.xml"))
+    for side, link in (("left", props["WheelFLName"]), ("right", props["WheelFRName"])):
+        joint = model.joint(f"r/wheel_{side}_joint")
+        assert joint.type[0] == mujoco.mjtJoint.mjJNT_HINGE
+        assert np.allclose(joint.axis, [0, 1, 0])
+        assert model.body(joint.bodyid[0]).name == f"r/{link}"
+
+
+@pytest.mark.parametrize("env_id", ENVIRONMENTS)
+def test_environment_builds_and_steps(env_id, build_yaml):
+    cls = CATALOGUE.get("environments", env_id)
+    assert (cls.folder / "README.md").is_file()
+    assert (cls.folder / cls.template).is_file()
+    probe = 0.2
+    out = build_yaml(f"environment: {{name: {env_id}}}\nobjects:\n"
+                     f"  - {{name: probe, type: box, translate: [0.0, 0.0, 0.5], size: [{probe}, {probe}, {probe}], "
+                     "dynamic: true}\n")
+    model = mujoco.MjModel.from_xml_path(str(out / "scene.xml"))
+    data = mujoco.MjData(model)
+    assert model.nlight >= 1, "an environment is lit"
+    world = [g for g in range(model.ngeom) if model.geom_bodyid[g] == 0]
+    colliding = [g for g in world if model.geom_contype[g] or model.geom_conaffinity[g]]
+    assert colliding, "an environment has something to stand on"
+    assert all(model.geom_contype[g] and model.geom_conaffinity[g] for g in world if model.geom_group[g] == 0), \
+        "environment geoms in group 0 collide"
+    run(model, data, 1.0)
+    # a box dropped at the origin lands on the ground at z = 0
+    assert data.xpos[model.body("probe").id][2] == pytest.approx(probe / 2, abs=0.005)
