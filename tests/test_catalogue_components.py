@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 import shutil
 import subprocess
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -15,7 +16,7 @@ import yourdfpy
 from morsec.catalogue import load_catalogue
 from morsec.compiler.urdf import expand_xacro
 
-CATALOGUE = load_catalogue()
+CATALOGUE = load_catalogue(Path(__file__).parent)  # what build_scene sees for a scene outside a project
 ROBOTS = CATALOGUE.ids("robots")
 ENVIRONMENTS = CATALOGUE.ids("environments")
 # robots naming a left and a right drive wheel (MORSE's WheeledRobot properties)

@@ -14,6 +14,7 @@ import re
 import shutil
 import tempfile
 from pathlib import Path
+from xml.sax.saxutils import escape as xml_escape
 
 import mujoco
 
@@ -27,6 +28,7 @@ from morsec.scene.loader import load_scene
 from morsec.scene.naming import join
 
 MANIFEST = "manifest.json"
+_NAME_PLACEHOLDER = "morsec__robot__name__placeholder"
 FORMAT_VERSION = 1
 
 
@@ -53,7 +55,9 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
             if not xacro_file.is_file():
                 raise SceneError(f"robot type {robot.type!r}: xacro file {cls.xacro!r} not found "
                                  f"(searched {xacro_file})")
-            urdf = expand_xacro(xacro_file, {"name": robot.name})
+            # xacro evaluates $(...) and ${...} in argument values: the name goes in after expansion, escaped
+            urdf = expand_xacro(xacro_file, {"name": _NAME_PLACEHOLDER})
+            urdf = urdf.replace(_NAME_PLACEHOLDER, xml_escape(robot.name, {'"': "&quot;"}))
             trees[robot.name] = read_urdf(urdf, f"{xacro_file}")
         except SceneError as err:
             raise _at_scene(err, scene, ("robots", r, "type")) from None

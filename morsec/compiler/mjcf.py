@@ -86,6 +86,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
               for r in scene.robots]
     objects = [_object(o, cat, env) for o in scene.objects]
     servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r.components, cat)]
+    sections = _component_sections(scene, cat, env, robot_trees)
     zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
 
     cam = scene.environment.camera
@@ -101,6 +102,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy},
         environment=env_xml, environment_assets=env_assets,
         robots=robots, objects=objects, zones=zones, servos=servos,
+        actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
     ))
 
 
@@ -128,6 +130,37 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     components = [_component(c, robot.name, cat, env) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
+
+
+SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2")
+
+
+def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]) -> dict[str, list]:
+    """A component folder may add MJCF <actuator> entries (actuator.xml.j2: e.g. wheel motors) and MuJoCo
+    <sensor> entries (sensor.xml.j2). Context: name (fqn), robot, robot_type, joints (the robot's MJCF
+    joint names by URDF name), links (MJCF body names by URDF link name), properties, component."""
+    devices = cat.devices()
+    out: dict[str, list] = {t: [] for t in SECTION_TEMPLATES}
+
+    def visit(comp, parent: str, robot):
+        fqn = join(parent, comp.name)
+        cls = devices[comp.type]
+        tree = robot_trees[robot.name]
+        joints = {link.joint["name"]: f"{robot.name}/{link.joint['name']}" for link in tree.walk() if link.joint}
+        links = {link.name: (robot.name if link is tree else f"{robot.name}/{link.name}") for link in tree.walk()}
+        for template in SECTION_TEMPLATES:
+            path = component_template(cat, cls, template)
+            if path:
+                out[template].append(render(env, path, name=fqn, robot=robot.name, robot_type=robot.type,
+                                            joints=joints, links=links, properties=comp.properties,
+                                            component=comp))
+        for child in comp.components:
+            visit(child, fqn, robot)
+
+    for robot in scene.robots:
+        for comp in robot.components:
+            visit(comp, robot.name, robot)
+    return out
 
 
 def _needs_servo(components, cat: Catalogue) -> bool:

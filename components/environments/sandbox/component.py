@@ -7,7 +7,6 @@ class Sandbox(Environment):
     from the origin and the axes. MORSE's `sandbox`, the default of `morse create`."""
 
     short_descr = "Flat ground with obstacles inside a low wall"
-    builder_name = "Sandbox"
 
 
 COMPONENT = Sandbox

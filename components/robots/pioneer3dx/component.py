@@ -15,7 +15,8 @@ class Pioneer3DX(Robot):
     spawn_height = 0.0975
 
     class Properties(RobotProperties):
-        GroundRobot: bool = True
+        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
+                                  "under velocity actuators")
         HasSuspension: bool = Field(False, description="MORSE PhysicsWheelRobot: wheels on suspensions")
         Influence: float = Field(0.1, description="MORSE wheel suspension influence")
         Friction: float = Field(0.8, description="MORSE wheel friction")

@@ -1,3 +1,5 @@
+from pydantic import Field
+
 from morsec.component import Robot, RobotProperties
 
 
@@ -13,7 +15,8 @@ class RMax(Robot):
     spawn_height = 0.55
 
     class Properties(RobotProperties):
-        NoGravity: bool = True
+        NoGravity: bool = Field(True, description="float: gravity compensated (false: it falls and lands on "
+                                "its skids)")
 
 
 COMPONENT = RMax

@@ -66,7 +66,7 @@ class Odometry(Sensor):
         delta = self.origin_rot.T @ (pos - prev_pos)
         r0, p0, y0 = matrix_to_euler(self.origin_rot.T @ prev_rot)
         r1, p1, y1 = matrix_to_euler(self.origin_rot.T @ rot)
-        self.local_data.update(dx=delta[0], dy=delta[1], dz=delta[2], dyaw=normalize_angle(y1 - y0),
+        self.local_data.update(dx=float(delta[0]), dy=float(delta[1]), dz=float(delta[2]), dyaw=normalize_angle(y1 - y0),
                                dpitch=normalize_angle(p1 - p0), droll=normalize_angle(r1 - r0))
 
 
@@ -85,8 +85,9 @@ class IntegratedOdometry(Odometry):
         f = self.frequency
         v = prev_rot.T @ (pos - prev_pos) * f
         d_roll, d_pitch, d_yaw = matrix_to_euler(prev_rot.T @ rot)
-        self.local_data.update(x=rel_pos[0], y=rel_pos[1], z=rel_pos[2], yaw=yaw, pitch=pitch, roll=roll,
-                               vx=v[0], vy=v[1], vz=v[2], wz=d_yaw * f, wy=d_pitch * f, wx=d_roll * f)
+        self.local_data.update(x=float(rel_pos[0]), y=float(rel_pos[1]), z=float(rel_pos[2]), yaw=yaw, pitch=pitch,
+                               roll=roll, vx=float(v[0]), vy=float(v[1]), vz=float(v[2]), wz=d_yaw * f, wy=d_pitch * f,
+                               wx=d_roll * f)
 
 
 COMPONENT = Odometry

@@ -18,7 +18,7 @@ class Pose(Sensor):
     )
 
     def default_action(self):
-        x, y, z = self.position()
+        x, y, z = (float(v) for v in self.position())
         roll, pitch, yaw = self.euler()
         self.local_data.update(x=x, y=y, z=z, yaw=yaw, pitch=pitch, roll=roll)
 

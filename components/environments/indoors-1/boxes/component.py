@@ -7,7 +7,6 @@ class IndoorsBoxes(Environment):
     quadrants, away from the origin and from the axes. MORSE's `indoors-1/boxes`."""
 
     short_descr = "Room with walls and boxes"
-    builder_name = "IndoorsBoxes"
 
 
 COMPONENT = IndoorsBoxes
