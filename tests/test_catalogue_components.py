@@ -125,16 +125,7 @@ def test_robot_left_alone_stays_put(robot_id, build_yaml):
     assert tilt < MAX_TILT, f"tipped by {math.degrees(tilt):.1f} deg"
 
 
-def _link_count(robot_id: str) -> int:
-    cls = CATALOGUE.get("robots", robot_id)
-    return expand_xacro(cls.folder / cls.xacro, {"name": "r"}).count("<link ")
-
-
-# Known compiler bug: templates/mjcf/robot.xml.j2 writes gravcomp="1" on the root body only, so the other
-# links of a NoGravity robot (wheels) keep their weight and pull it down. Strict: a fix makes these XPASS.
-GRAVCOMP_ROOT_ONLY = pytest.mark.xfail(strict=True, reason="gravcomp is emitted on the root link only")
-MOVABLE = [pytest.param(r, marks=GRAVCOMP_ROOT_ONLY) if _link_count(r) > 1 else r
-           for r in ROBOTS if not CATALOGUE.get("robots", r).static]
+MOVABLE = [r for r in ROBOTS if not CATALOGUE.get("robots", r).static]
 
 
 @pytest.mark.parametrize("robot_id", MOVABLE)

@@ -70,6 +70,8 @@ def read_urdf(text: str, source: str) -> Link:
         raise SceneError(f"{source}: invalid URDF: {err}") from None
     robot = urdf.robot
     links = {link.name: link for link in robot.links}
+    # materials named in a visual but defined once at robot level carry their colour there
+    materials = {m.name: m for m in (robot.materials or []) if m.name}
     children: dict[str, list] = {}
     for joint in robot.joints:
         children.setdefault(joint.parent, []).append(joint)
@@ -96,11 +98,11 @@ def read_urdf(text: str, source: str) -> Link:
             link.inertia = np.array([i[0, 0], i[1, 1], i[2, 2], i[0, 1], i[0, 2], i[1, 2]])
         has_visual = bool(ulink.visuals)
         for visual in ulink.visuals:
-            geom = _geom(visual, collision=False, source=source)
+            geom = _geom(visual, collision=False, source=source, materials=materials)
             if geom:
                 link.geoms.append(geom)
         for coll in ulink.collisions:
-            geom = _geom(coll, collision=True, source=source)
+            geom = _geom(coll, collision=True, source=source, materials=materials)
             if geom:
                 geom.rgba = None if has_visual else geom.rgba
                 link.geoms.append(geom)
@@ -130,12 +132,14 @@ def _joint(joint) -> dict | None:
     return out
 
 
-def _geom(item, collision: bool, source: str) -> Geom | None:
+def _geom(item, collision: bool, source: str, materials: dict) -> Geom | None:
     origin = item.origin if item.origin is not None else np.eye(4)
     pos, quat = origin[:3, 3].copy(), matrix_to_quat(origin[:3, :3])
     g = item.geometry
     rgba = None
     material = getattr(item, "material", None)
+    if material is not None and material.color is None and material.name in materials:
+        material = materials[material.name]
     if material is not None and material.color is not None:
         rgba = list(material.color.rgba)
     if g.box is not None:

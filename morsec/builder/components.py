@@ -1,0 +1,916 @@
+"""MORSE's builder classes, recording into the current session.
+
+Every method only writes down what the script says, in the keys of the scene IR (`translate`,
+`streams`, `properties` ...); the pipeline validates it all later and points errors at the script line
+that wrote the value. A method MORSE has but morsec cannot honour (Blender materials, sub-objects of a
+.blend) is accepted, recorded in `environment.morse_only` and warned about once.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+from pathlib import Path
+from typing import Any, ClassVar, get_args
+
+from morsec.builder import session as _session
+from morsec.builder.session import BuilderAttributeError, BuilderError
+from morsec.catalogue import camel_case, project_root
+from morsec.errors import did_you_mean, one_of
+from morsec.scene import models
+
+# modifier module names in MORSE's `morse.modifiers` package -> morsec modifier names
+_MODIFIER_MODULES = {
+    "ned": "ned", "utm": "utm", "ecef": "ecef", "geodetic": "geodetic", "geocentric": "geocentric", "feet": "feet",
+    "pose_noise": "posenoise", "imu_noise": "imunoise", "odometry_noise": "odometrynoise", "noise": "noise",
+}
+_PHYSICS_TYPES = {"STATIC": "static", "DYNAMIC": "dynamic", "RIGID_BODY": "rigid_body", "NO_COLLISION": "no_collision"}
+_INTERNAL_PROPERTIES = ("Component_Tag", "Robot_Tag", "External_Robot_Tag", "Zone_Tag")
+
+
+def middlewares() -> tuple[str, ...]:
+    return tuple(get_args(models.Middleware))
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays, tuples -> plain Python values (what YAML would give)."""
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):
+        return _plain(value.tolist())
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    return value
+
+
+def _float(value: Any) -> Any:
+    value = _plain(value)
+    if isinstance(value, bool):
+        return value
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return value  # left for the pipeline to report, at this line
+
+
+def _vector(value: Any) -> Any:
+    value = _plain(value)
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        return [float(value)] * 3
+    if isinstance(value, list):
+        return [_float(v) for v in value]
+    return value
+
+
+class AbstractComponent:
+    """Base of every builder object: name, transform, properties, children, middleware bindings."""
+
+    _kind: ClassVar[str] = "component"  # robot, device, object, zone or environment
+    _type: ClassVar[str | None] = None  # the catalogue type this class places (generated classes set it)
+    _classpath: ClassVar[str | None] = None
+
+    def __init__(self, obj=None, filename="", category=""):
+        self._start(register=True)
+        if obj is not None:
+            self._session.morse_only(self, "__init__", {"obj": repr(obj)},
+                                     "wraps a Blender object; morsec has none")
+
+    def _start(self, register: bool) -> None:
+        session = _session.current()
+        self._session = session
+        self._raw: dict[str, Any] = {}
+        self._where: dict[tuple, tuple] = {}
+        self._children: list[AbstractComponent] = []
+        self._parent: AbstractComponent | None = None
+        self._explicit_name: str | None = None
+        self._auto_name: str | None = None
+        self._final_name: str | None = None
+        self._type_name: str | None = type(self)._type
+        self._position = session.position()
+        if register:
+            session.register(self)
+
+    # ---- unknown methods: an error naming the script line (the runner adds file:line)
+
+    def __getattr__(self, name: str):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        public = [n for n in dir(type(self)) if not n.startswith("_")]
+        kind = {"robot": "robot", "device": "component", "object": "passive object", "zone": "zone",
+                "environment": "environment"}.get(self._kind, "builder object")
+        raise BuilderAttributeError(f"{type(self).__name__} ({kind}) has no method or attribute {name!r}"
+                                    f"{did_you_mean(name, public)}")
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.name!r}>"
+
+    # ---- recording helpers
+
+    def _pos(self) -> tuple:
+        _, line, col = self._session.position()
+        return (line, col or 1) if line else None
+
+    def _put(self, *path: Any, value: Any) -> None:
+        node = self._raw
+        for key in path[:-1]:
+            node = node.setdefault(key, {})
+        node[path[-1]] = value
+        self._mark(*path)
+
+    def _mark(self, *path: Any) -> None:
+        pos = self._pos()
+        if pos:
+            self._where[tuple(path)] = pos
+
+    def _append_to(self, key: str, value: Any, unique: bool = False) -> None:
+        items = self._raw.setdefault(key, [])
+        if unique and value in items:
+            return
+        items.append(value)
+        self._mark(key, len(items) - 1)
+
+    def _require(self, method: str, *kinds: str) -> None:
+        if self._kind not in kinds:
+            what = {"robot": "robots", "device": "sensors and actuators", "object": "passive objects",
+                    "zone": "zones"}
+            allowed = " and ".join(what.get(k, k) for k in kinds)
+            raise self._session.error(f"{type(self).__name__}.{method}(): only for {allowed}")
+
+    def _morse_only(self, call: str, value: Any = None, reason: str | None = None) -> None:
+        self._session.morse_only(self, call, value if value is not None else {}, reason)
+
+    # ---- names
+
+    @property
+    def basename(self) -> str | None:
+        return self._explicit_name or self._auto_name
+
+    @basename.setter
+    def basename(self, value: str | None) -> None:
+        self._auto_name = value
+
+    @property
+    def name(self) -> str:
+        """The fully-qualified name once the Environment is created (robot.pose), else the base name."""
+        if self._session.renamed:
+            return self._fqn()
+        return self.basename or self._default_label()
+
+    @name.setter
+    def name(self, value: str | None) -> None:
+        if not value:
+            return
+        value = str(value)
+        if "." in value:
+            raise self._session.error(f"invalid name {value!r}: dots are not allowed (names are joined with "
+                                      "'.' into fully-qualified names: robot.pose)")
+        self._explicit_name = value
+        self._mark("name")
+        if self._session.renamed:
+            self._session.assign_names()
+
+    def _default_label(self) -> str:
+        return self._emit_type() or type(self).__name__.lower()
+
+    def _fqn(self) -> str:
+        parts = []
+        node: AbstractComponent | None = self
+        while node is not None:
+            parts.append(node._final_name or node.basename or node._default_label())
+            node = node._parent
+        return _session.join(*reversed(parts))
+
+    def _label(self) -> str:
+        return self._fqn()
+
+    @property
+    def parent(self):
+        return self._parent
+
+    @property
+    def children(self) -> list:
+        return list(self._children)
+
+    # ---- transform
+
+    def _vec(self, key: str) -> list:
+        vec = self._raw.get(key)
+        if not isinstance(vec, list):
+            vec = [0.0, 0.0, 0.0]
+            self._raw[key] = vec
+        return vec
+
+    def translate(self, x=0.0, y=0.0, z=0.0):
+        """Add (x, y, z) to the position, in metres (additive, as MORSE)."""
+        vec = self._vec("translate")
+        for i, d in enumerate((x, y, z)):
+            vec[i] = _float(vec[i] + _float(d))
+        self._mark("translate")
+
+    def rotate(self, x=0.0, y=0.0, z=0.0):
+        """Add (x, y, z) to the XYZ Euler rotation, in radians (additive, as MORSE)."""
+        vec = self._vec("rotate")
+        for i, d in enumerate((x, y, z)):
+            vec[i] = _float(vec[i] + _float(d))
+        self._mark("rotate")
+
+    @property
+    def location(self) -> list:
+        return list(self._raw.get("translate", [0.0, 0.0, 0.0]))
+
+    @location.setter
+    def location(self, xyz) -> None:
+        self._put("translate", value=_vector(xyz))
+
+    @property
+    def rotation_euler(self) -> list:
+        return list(self._raw.get("rotate", [0.0, 0.0, 0.0]))
+
+    @rotation_euler.setter
+    def rotation_euler(self, xyz) -> None:
+        self._put("rotate", value=_vector(xyz))
+
+    @property
+    def scale(self) -> list:
+        return [1.0, 1.0, 1.0]
+
+    @scale.setter
+    def scale(self, xyz) -> None:
+        self._morse_only("scale", {"scale": _vector(xyz)}, "scales a Blender mesh; robots and components keep "
+                         "their catalogue geometry")
+
+    # ---- properties
+
+    def properties(self, **kwargs):
+        """Set properties (MORSE game properties): checked against the component's properties later."""
+        for key, value in kwargs.items():
+            if key in _INTERNAL_PROPERTIES:
+                continue
+            if self._kind == "device" and key == "classpath":
+                self._type_name = self._type_from_classpath(value)
+                continue
+            if self._kind == "device" and key == "abstraction_level":
+                self.level(value)
+                continue
+            if self._kind == "device" and key == "frequency":
+                self.frequency(value)
+                continue
+            self._put("properties", key, value=_plain(value))
+
+    def property_value(self, name: str):
+        return self._raw.get("properties", {}).get(name)
+
+    # ---- children
+
+    def append(self, obj, child=None, level=1):
+        """Attach a sensor or actuator to this robot (or to another component)."""
+        if not isinstance(obj, AbstractComponent):
+            raise self._session.error(f"{type(self).__name__}.append(): expected a sensor or an actuator, "
+                                      f"got {obj!r}")
+        if self._kind not in ("robot", "device"):
+            raise self._session.error(f"{type(self).__name__}.append(): components attach to robots and to "
+                                      "other components only")
+        if obj._kind != "device":
+            raise self._session.error(f"{type(self).__name__}.append({type(obj).__name__}): only sensors and "
+                                      "actuators can be appended (robots, objects and zones are placed in the world)")
+        node: AbstractComponent | None = self
+        while node is not None:
+            if node is obj:
+                raise self._session.error(f"{type(self).__name__}.append(): cannot append a component to itself "
+                                          "or to one of its own children")
+            node = node._parent
+        if child is not None:
+            self._morse_only("append", {"child": child}, "attaches to a named sub-object of a Blender model; "
+                             "the component is attached to the robot itself")
+        if obj._parent is not None:
+            obj._parent._children.remove(obj)
+        obj._parent = self
+        self._children.append(obj)
+        self._session.name_from(self._session.caller_frame(), obj)
+
+    def get_child(self, name, objects=None, recursive=True):
+        self._morse_only("get_child", {"name": name}, "looks up Blender sub-objects; there are none")
+        return None
+
+    # ---- sensors and actuators: middleware, modifiers, levels, frequency
+
+    def _middleware_of(self, binding, method: str) -> tuple[str, dict]:
+        """A middleware name, or a full binding [classpath, method, path] -> (middleware, binding fields)."""
+        if isinstance(binding, (list, tuple)):
+            parts = [str(p) for p in binding]
+            if not parts:
+                raise self._session.error(f"{method}([]): give a middleware name or [classpath, method, path]")
+            classpath = parts[0]
+            for mw in middlewares():
+                if mw in classpath.lower():
+                    fields = {"classpath": classpath}
+                    if len(parts) > 1:
+                        fields["method"] = parts[1]
+                    if len(parts) > 2:
+                        fields["path"] = parts[2]
+                    return mw, fields
+            raise self._session.error(f"{method}({parts!r}): no morsec middleware for classpath {classpath!r}; "
+                                      f"available middlewares: {one_of(middlewares())}")
+        return binding, {}
+
+    def add_stream(self, datastream, method=None, path=None, classpath=None, direction=None, **kwargs):
+        """Stream the component's data through a middleware ('socket', 'text', or a full binding)."""
+        self._require("add_stream", "device")
+        middleware, fields = self._middleware_of(datastream, "add_stream")
+        entry: dict[str, Any] = {"middleware": middleware, **fields}
+        for key, value in (("method", method), ("path", path), ("classpath", classpath), ("direction", direction)):
+            if value is not None:
+                entry[key] = value
+        entry.update({k: _plain(v) for k, v in kwargs.items() if v is not None})
+        self._append_to("streams", middleware if len(entry) == 1 else entry)
+
+    def configure_mw(self, datastream, method=None, path=None, component=None):
+        """Deprecated MORSE name of add_stream; also takes a full binding [classpath, method, path]."""
+        self._require("configure_mw", "device")
+        if component is not None:
+            self._morse_only("configure_mw", {"component": component},
+                             "(component=...) borrows another component's serializer; morsec has one per component")
+        self.add_stream(datastream, method, path)
+
+    def add_service(self, interface, component=None, config=None):
+        """Expose the component's services through a middleware ('socket')."""
+        self._require("add_service", "device")
+        middleware, _ = self._middleware_of(interface, "add_service")
+        if component is not None or config is not None:
+            self._morse_only("add_service", {"component": component, "config": config},
+                             "(component=, config=) selects MORSE request-manager classes")
+        self._append_to("services", middleware, unique=True)
+
+    def configure_service(self, interface, component=None, config=None):
+        """Deprecated MORSE name of add_service."""
+        self.add_service(interface, component, config)
+
+    def add_interface(self, interface, **kwargs):
+        """add_service + add_stream on one middleware."""
+        self._require("add_interface", "device")
+        middleware, fields = self._middleware_of(interface, "add_interface")
+        self._append_to("interfaces", middleware, unique=True)
+        extra = {k: _plain(v) for k, v in kwargs.items() if v is not None}
+        if extra or fields:
+            self._append_to("streams", {"middleware": middleware, **fields, **extra})
+
+    def _modifier_from_classpath(self, classpath: str) -> str:
+        parts = str(classpath).split(".")
+        module = parts[-2] if len(parts) > 1 else parts[0]
+        if module in _MODIFIER_MODULES:
+            return _MODIFIER_MODULES[module]
+        if "noise" in parts[-1].lower():
+            return "noise"
+        raise self._session.error(f"alter(classpath={classpath!r}): no morsec modifier for this class; "
+                                  f"modifiers: {one_of(models.MODIFIERS)}")
+
+    def alter(self, modifier_name=None, classpath=None, direction=None, **kwargs):
+        """Add a modifier (Noise, NED, UTM, ...) with its parameters."""
+        self._require("alter", "device")
+        name = modifier_name or (self._modifier_from_classpath(classpath) if classpath else None)
+        if not name:
+            raise self._session.error("alter(): give a modifier name, e.g. alter('Noise', pos_std=0.1)")
+        entry = {"name": name}
+        entry.update({k: _plain(v) for k, v in kwargs.items() if v is not None})
+        self._append_to("modifiers", entry)
+
+    def configure_modifier(self, mod, config=None, **kwargs):
+        """Deprecated MORSE name of alter; `mod` is a modifier name or [classpath, method]."""
+        if isinstance(mod, (list, tuple)):
+            self.alter(classpath=mod[0] if mod else None, **kwargs)
+        else:
+            self.alter(mod, **kwargs)
+
+    def add_overlay(self, datastream, overlay, config=None, **kwargs):
+        """Expose the component's services reshaped by an overlay class, for one middleware."""
+        self._require("add_overlay", "device")
+        middleware, _ = self._middleware_of(datastream, "add_overlay")
+        entry = {"middleware": middleware, "overlay": overlay}
+        entry.update({k: _plain(v) for k, v in kwargs.items() if v is not None})
+        self._append_to("overlays", entry)
+
+    def configure_overlay(self, datastream, overlay, config=None, **kwargs):
+        """Deprecated MORSE name of add_overlay."""
+        self.add_overlay(datastream, overlay, config, **kwargs)
+
+    def level(self, level):
+        """Select the component's level of realism (e.g. Odometry: raw, differential, integrated)."""
+        self._require("level", "device")
+        self._put("level", value=level)
+
+    def frequency(self, frequency=None):
+        """Ticks per simulated second."""
+        self._require("frequency", "device")
+        if frequency is not None:
+            self._put("frequency", value=_float(frequency))
+
+    def profile(self):
+        """Report the time spent in this component."""
+        self._require("profile", "device")
+        self._put("profile", value=True)
+
+    def set_color(self, r=0.1, g=0.1, b=0.1, a=None):
+        """RGB colour in 0..1 (a: optional alpha, a morsec extension)."""
+        self._require("set_color", "robot", "device", "object")
+        self._put("color", value=[_float(v) for v in ((r, g, b) if a is None else (r, g, b, a))])
+
+    # ---- MORSE's Blender plumbing: accepted, recorded
+
+    def morseable(self, calling_module=None):
+        return None
+
+    def is_morseable(self) -> bool:
+        return self._kind in ("robot", "device")
+
+    def select(self):
+        return None
+
+    def is_exportable(self) -> bool:
+        return True
+
+    def mark_unexportable(self):
+        self._morse_only("mark_unexportable", {}, "is decided by the component's catalogue entry (exportable)")
+
+    def append_meshes(self, objects=None, component=None, prefix=None):
+        self._morse_only("append_meshes", {"objects": objects, "component": component, "prefix": prefix},
+                         "imports meshes from a .blend file")
+        return []
+
+    def append_scenes(self, *args, **kwargs):
+        self._morse_only("append_scenes", kwargs, "imports scenes from a .blend file")
+        return []
+
+    def append_collada(self, component=None):
+        self._morse_only("append_collada", {"component": component}, "imports a Collada mesh")
+        return []
+
+    # ---- the catalogue
+
+    def _catalogue_kinds(self) -> tuple[str, ...]:
+        return {"robot": ("robots",), "device": ("sensors", "actuators"), "object": ("props",)}.get(self._kind, ())
+
+    def _lookup(self, name: str) -> str | None:
+        cat = self._session.catalogue
+        text = str(name)
+        candidates = [text]
+        base = text[:-6] if text.endswith(".blend") else text
+        stem = base.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
+        candidates += [base, stem, stem.lower(), camel_case(stem)]
+        for kind in self._catalogue_kinds():
+            for candidate in candidates:
+                found = cat.resolve(kind, candidate)
+                if found:
+                    return found
+        return None
+
+    def _emit_type(self) -> str | None:
+        if self._type_name is None:
+            return None
+        return self._lookup(self._type_name) or self._type_name
+
+    def _type_from_classpath(self, classpath) -> str:
+        cat = self._session.catalogue
+        text = str(classpath or "")
+        kinds = self._catalogue_kinds()
+        if not text:
+            raise self._session.error(f"{type(self).__name__}: set _classpath to the component it places, "
+                                      "e.g. _classpath = 'morse.sensors.pose.Pose'")
+        ref = text.split(":", 1)[0]
+        if "/" in ref:
+            kind, _, cid = ref.partition("/")
+            if kind in kinds and cat.resolve(kind, cid):
+                return cat.resolve(kind, cid)
+        parts = text.split(".")
+        class_name = parts[-1]
+        module = parts[-2] if len(parts) > 1 else None
+        for kind in kinds:
+            found = cat.resolve(kind, class_name)
+            if found:
+                return found
+            for cid, cls in sorted(cat.by_kind.get(kind, {}).items()):
+                if cls.__name__ == class_name:
+                    return cid
+            if module and cat.resolve(kind, module):
+                return cat.resolve(kind, module)
+        names = sorted({n for kind in kinds for n in cat.names(kind)})
+        raise self._session.error(
+            f"{type(self).__name__}: _classpath {text!r} names no component of the catalogue{did_you_mean(class_name, names)} "
+            "(morsec does not load MORSE's Python component classes: write the component as a folder "
+            "components/<sensors|actuators>/<id>/component.py, see docs/builder.md)")
+
+    # ---- emission
+
+    def _emit_fields(self) -> dict:
+        return copy.deepcopy(self._raw)
+
+    def _emit(self, prefix: tuple, smap) -> dict:
+        if self._position[1]:
+            pos = (self._position[1], self._position[2] or 1)
+            smap.values[prefix] = pos
+            smap.keys[prefix] = pos
+        out: dict[str, Any] = {}
+        if self._final_name:
+            out["name"] = self._final_name
+        kind_type = self._emit_type()
+        if kind_type is not None:
+            out["type"] = kind_type
+        out.update(self._emit_fields())
+        for path, pos in self._where.items():
+            smap.values[prefix + path] = pos
+            smap.keys[prefix + path] = pos
+        if self._children:
+            out["components"] = [child._emit(prefix + ("components", i), smap)
+                                 for i, child in enumerate(self._children)]
+        return out
+
+
+# ---------------------------------------------------------------- components (sensors and actuators)
+
+class Component(AbstractComponent):
+    """A catalogue component by category and name: Component('sensors', 'pose')."""
+
+    def __init__(self, category="", filename="", blender_object_name=None, make_morseable=True):
+        kind = {"robots": "robot", "sensors": "device", "actuators": "device", "props": "object"}.get(category)
+        if kind is None:
+            self._kind = "device"
+            self._start(register=True)
+            raise self._session.error(f"Component({category!r}, {filename!r}): category must be one of "
+                                      f"{one_of(['robots', 'sensors', 'actuators', 'props'])}")
+        self._kind = kind
+        self._start(register=True)
+        self._type_name = str(filename)
+        if blender_object_name:
+            self._morse_only("__init__", {"blender_object_name": blender_object_name},
+                             "(blender_object_name=) picks an object inside a .blend file")
+
+
+class ComponentCreator(AbstractComponent):
+    """Base of sensors and actuators: a catalogue component, or a custom one named by `_classpath`."""
+
+    _kind = "device"
+    APPEND_EMPTY = 0
+    USE_BLEND = 1
+    LINK_EXISTING_OBJECT = 2
+    LINK_EXISTING_BLEND = 2
+
+    def __init__(self, cname=None, category="sensors", filename=None, action=0, make_morseable=True):
+        self._start(register=True)
+        self._type_name = self._own_type()
+        if cname:
+            self.name = cname
+
+    def _own_type(self) -> str:
+        """The most derived of `_type` (catalogue classes) and `_classpath` (custom components)."""
+        for klass in type(self).__mro__:
+            own = vars(klass)
+            if own.get("_type"):
+                return own["_type"]
+            if own.get("_classpath"):
+                return self._type_from_classpath(own["_classpath"])
+        return self._type_from_classpath(None)
+
+
+class SensorCreator(ComponentCreator):
+    """Base of every sensor class; subclass it with `_classpath` for a custom sensor."""
+
+    def __init__(self, name=None, action=ComponentCreator.APPEND_EMPTY, make_morseable=True, *args, **kwargs):
+        if isinstance(action, str) and "." in action and not getattr(type(self), "_classpath", None):
+            type(self)._classpath = action  # MORSE 1.0: SensorCreator(name, classpath, ...)
+        ComponentCreator.__init__(self, name, "sensors")
+
+
+class ActuatorCreator(ComponentCreator):
+    """Base of every actuator class; subclass it with `_classpath` for a custom actuator."""
+
+    def __init__(self, name=None, action=ComponentCreator.APPEND_EMPTY, blendfile=None, blendobject=None,
+                 make_morseable=True, *args, **kwargs):
+        if isinstance(action, str) and "." in action and not getattr(type(self), "_classpath", None):
+            type(self)._classpath = action
+        ComponentCreator.__init__(self, name, "actuators")
+
+
+class Sensor(AbstractComponent):
+    """A catalogue sensor by name: Sensor('pose') (MORSE's older API)."""
+
+    _kind = "device"
+
+    def __init__(self, filename="", name=None):
+        self._start(register=True)
+        self._type_name = str(filename)
+        if name:
+            self.name = name
+
+
+class Actuator(Sensor):
+    """A catalogue actuator by name: Actuator('motion_vw') (MORSE's older API)."""
+
+
+# ---------------------------------------------------------------- robots
+
+class Robot(AbstractComponent):
+    """A robot of the catalogue; Robot('atrv') or a catalogue class (ATRV())."""
+
+    _kind = "robot"
+
+    def __init__(self, filename="", name=None, blender_object_name=None):
+        self._start(register=True)
+        if self._type_name is None:
+            if not filename:
+                raise self._session.error("Robot(): name the robot model, e.g. Robot('atrv'), or use its class "
+                                          "(ATRV(), ...)")
+            self._type_name = str(filename)
+        if blender_object_name:
+            self._morse_only("__init__", {"blender_object_name": blender_object_name},
+                             "(blender_object_name=) picks an object inside a .blend file")
+        if name:
+            self.name = name
+
+    def add_default_interface(self, stream):
+        """Stream + service `stream` on every component of the robot that has none."""
+        middleware, _ = self._middleware_of(stream, "add_default_interface")
+        self._put("default_interface", value=middleware)
+
+    def set_mass(self, mass):
+        """Total mass of the robot, kg."""
+        self._put("mass", value=_float(mass))
+
+    def set_friction(self, friction=0.0):
+        """Sliding friction coefficient of the robot's geoms."""
+        self._put("friction", value=_float(friction))
+
+    def make_ghost(self, alpha=0.3):
+        """Transparent, with no collision."""
+        self._put("ghost", value=_float(alpha))
+
+    def set_no_collision(self):
+        self._put("collision", value=False)
+
+    def set_physics_type(self, physics_type="STATIC"):
+        """STATIC, DYNAMIC, RIGID_BODY or NO_COLLISION."""
+        text = str(physics_type)
+        self._put("physics_type", value=_PHYSICS_TYPES.get(text.upper(), text.lower()))
+
+    def set_rigid_body(self):
+        self._put("physics_type", value="rigid_body")
+
+    def set_dynamic(self):
+        self._put("physics_type", value="dynamic")
+
+    def make_external(self):
+        self._morse_only("make_external", {}, "is decided per node by configure_multinode's distribution")
+
+    def set_use_record_animation(self, record=True):
+        self._morse_only("set_use_record_animation", {"record": record}, "records a Blender animation")
+
+    def set_collision_bounds(self):
+        self._morse_only("set_collision_bounds", {}, "sets Bullet collision bounds; MuJoCo uses the robot's "
+                         "collision geometry")
+
+    def make_grasper(self, obj_name=None):
+        self._morse_only("make_grasper", {"obj_name": obj_name}, "adds a Blender NEAR sensor")
+
+    def unparent_wheels(self):
+        return None
+
+    def after_renaming(self):
+        return None
+
+
+class GroundRobot(Robot):
+    """A robot that stays on the ground (property GroundRobot=True)."""
+
+    def __init__(self, filename="", name=None, blender_object_name=None):
+        Robot.__init__(self, filename, name, blender_object_name)
+        self.properties(GroundRobot=True)
+
+
+class WheeledRobot(Robot):
+    """A robot with wheels (MORSE's wheel-name properties come from the catalogue's description)."""
+
+
+class FakeRobot(Robot):
+    """A robot with no body, to hold sensors that are not on a robot (catalogue type FakeRobot)."""
+
+    _type = "FakeRobot"
+
+    def __init__(self, name=None):
+        Robot.__init__(self, "", name)
+
+
+# ---------------------------------------------------------------- passive objects
+
+class _Object(AbstractComponent):
+    _kind = "object"
+    _unit_mesh: ClassVar[bool] = False  # True: a Blender primitive, 2 m wide at scale 1 (±1)
+
+    def _start(self, register: bool) -> None:
+        super()._start(register)
+        self._scale: list | None = None
+
+    @property
+    def scale(self) -> list:
+        return list(self._scale) if self._scale is not None else [1.0, 1.0, 1.0]
+
+    @scale.setter
+    def scale(self, xyz) -> None:
+        """MORSE's Blender scale: a basic mesh is ±1, so its full size is 2 * scale."""
+        self._scale = _vector(xyz)
+        self._mark("size")
+
+    @property
+    def size(self) -> list:
+        """Full extent along x, y, z, m (morsec's `size`)."""
+        if "size" in self._raw:
+            return list(self._raw["size"])
+        return [2.0 * s for s in self.scale]
+
+    @size.setter
+    def size(self, xyz) -> None:
+        self._scale = None
+        self._put("size", value=_vector(xyz))
+
+    def color(self, r=0.1, g=0.1, b=0.1):
+        """MORSE Mesh.color(r, g, b)."""
+        self._put("color", value=[_float(r), _float(g), _float(b)])
+
+    def set_mass(self, mass):
+        """Mass, kg (for dynamic objects)."""
+        self._put("mass", value=_float(mass))
+
+    def set_dynamic(self):
+        """The object moves under physics (morsec objects are static unless told)."""
+        self._put("dynamic", value=True)
+
+    def set_static(self):
+        self._put("dynamic", value=False)
+
+    def set_physics_type(self, physics_type="STATIC"):
+        self._put("dynamic", value=str(physics_type).upper() in ("DYNAMIC", "RIGID_BODY"))
+
+    def setgraspable(self):
+        """Object=True, Graspable=True and Label=<name> (unless a Label is set)."""
+        self.properties(Object=True, Graspable=True)
+        self._graspable = True
+
+    def _emit_fields(self) -> dict:
+        out = copy.deepcopy(self._raw)
+        if self._scale is not None:
+            if isinstance(self._scale, list):
+                out["size"] = [2.0 * s if isinstance(s, (int, float)) else s for s in self._scale]
+            else:
+                out["size"] = self._scale
+        elif self._unit_mesh and "size" not in out:
+            out["size"] = [2.0, 2.0, 2.0]
+        if getattr(self, "_graspable", False):
+            out.setdefault("properties", {}).setdefault("Label", self._final_name or self._default_label())
+        return out
+
+
+class Mesh(_Object):
+    """A Blender primitive: a basic shape, ±1 at scale 1 (so 2 m wide), as MORSE's blenderobjects."""
+
+    _unit_mesh = True
+
+    def __init__(self, name=None):
+        self._start(register=True)
+        if name:
+            self.name = name
+
+
+class Cube(Mesh):
+    _type = "Cube"
+
+
+class Cylinder(Mesh):
+    _type = "Cylinder"
+
+
+class Sphere(Mesh):
+    _type = "Sphere"
+
+
+class IcoSphere(Mesh):
+    _type = "IcoSphere"
+
+
+class Cone(Mesh):
+    _type = "Cone"
+
+
+class Torus(Mesh):
+    _type = "Torus"
+
+
+class Plane(Mesh):
+    _type = "Plane"
+
+
+class CatalogueProp(_Object):
+    """A catalogue prop by its builder name (generated per catalogue)."""
+
+    def __init__(self, name=None):
+        self._start(register=True)
+        if name:
+            self.name = name
+
+
+class PassiveObject(_Object):
+    """MORSE's PassiveObject(filename, prefix): a catalogue prop, else an asset file (not supported yet)."""
+
+    def __init__(self, filename="props/objects", prefix=None, keep_pose=False):
+        self._start(register=True)
+        for candidate in (prefix, filename):
+            if candidate:
+                found = self._lookup(candidate)
+                if found:
+                    self._type_name = found
+                    self._unit_mesh = found in {self._lookup(n) for n in ("Cube", "Cylinder", "Sphere")}
+                    return
+        searched = asset_search_path(self._session.script)
+        found_file = find_asset(str(filename), searched)
+        what = f"PassiveObject({filename!r}" + (f", {prefix!r})" if prefix else ")")
+        props = ", ".join(self._session.catalogue.names("props"))
+        if found_file:
+            raise self._session.error(f"{what}: found {found_file}, but morsec cannot load Blender assets (.blend) "
+                                      f"yet; use a catalogue prop ({props}) or a basic shape (Cube(), Cylinder(), Sphere())")
+        shown = ", ".join(str(p) for p in searched) or "(nothing)"
+        raise self._session.error(f"{what}: no catalogue prop by that name ({props}) and no asset file found; "
+                                  f"searched {shown} (add folders with MORSE_RESOURCE_PATH)")
+
+
+def asset_search_path(script: Path | None) -> list[Path]:
+    """$MORSE_RESOURCE_PATH, then the script's folder, then the project's folder and its data/ folder."""
+    paths: list[Path] = []
+    for item in os.environ.get("MORSE_RESOURCE_PATH", "").split(os.pathsep):
+        if item:
+            paths.append(Path(item))
+    folder = Path(script).resolve().parent if script else Path.cwd()
+    paths.append(folder)
+    root = project_root(folder)
+    if root is not None:
+        paths += [root, root / "data"]
+    unique: list[Path] = []
+    for p in paths:
+        if p not in unique:
+            unique.append(p)
+    return unique
+
+
+def find_asset(filename: str, searched: list[Path]) -> Path | None:
+    names = [filename] if filename.endswith(".blend") else [filename, filename + ".blend"]
+    for name in names:
+        path = Path(name)
+        if path.is_absolute():
+            if path.is_file():
+                return path
+            continue
+        for folder in searched:
+            if (folder / path).is_file():
+                return folder / path
+    return None
+
+
+# ---------------------------------------------------------------- zones
+
+class Zone(AbstractComponent):
+    """Zone(type): an invisible box with a type. MORSE's `size` is the half-extent (the cube is ±1)."""
+
+    _kind = "zone"
+
+    def __init__(self, type="Zone", name=None):
+        self._start(register=True)
+        self._type_name = str(type)
+        self._half: list | None = None
+        if name:
+            self.name = name
+
+    @property
+    def size(self) -> list:
+        return list(self._half) if self._half is not None else [1.0, 1.0, 1.0]
+
+    @size.setter
+    def size(self, xyz) -> None:
+        self._half = _vector(xyz)
+        self._mark("size")
+
+    scale = size
+
+    def rotate(self, x=0.0, y=0.0, z=0.0):
+        self._session.warn("Zone.rotate", "Zone.rotate() is not supported (zones are axis-aligned, as in MORSE); "
+                           "ignored")
+
+    def _default_label(self) -> str:
+        return self._type_name or "zone"
+
+    def _emit_type(self) -> str | None:
+        return self._type_name
+
+    def _emit_fields(self) -> dict:
+        out = copy.deepcopy(self._raw)
+        half = self._half if self._half is not None else [1.0, 1.0, 1.0]
+        out["size"] = [2.0 * s if isinstance(s, (int, float)) else s for s in half] if isinstance(half, list) else half
+        return out
+
+
+def builder_error(message: str) -> BuilderError:
+    return _session.current().error(message)
