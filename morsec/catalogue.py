@@ -152,6 +152,20 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     return cls
 
 
+def component_class(kind: str, cid: str, start: Path | None = None) -> type[Component]:
+    """The class of component `cid` of `kind` ("sensors", ...) on the search path, for a component.py that
+    extends another one (a preset: `LaserScanner = component_class("sensors", "laser_scanner")`). Reuses
+    the module if already loaded; cannot go through load_catalogue, which is running when presets load."""
+    for root in search_path(start):
+        folder = root / kind / cid
+        if (folder / "component.py").is_file():
+            digest = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8]
+            module = sys.modules.get(f"morsec_components.{kind}.{re.sub(r'\W', '_', cid)}_{digest}")
+            loaded = getattr(module, "COMPONENT", None)
+            return loaded if getattr(loaded, "id", None) == cid else load_component(folder, kind, cid)
+    raise MorsecError(f"no {kind[:-1]} {cid!r} on the component search path")
+
+
 def _basic(annotation) -> bool:
     if annotation in BASIC_TYPES:
         return True

@@ -119,6 +119,60 @@ def docs(
 
 
 @app.command()
+def render(
+    scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="PNG file to write")] = Path("scene.png"),
+    camera: Annotated[Optional[str], typer.Option(help="camera name (default: the environment's camera)")] = None,
+    width: Annotated[int, typer.Option(min=16, max=1920, help="image width, pixels")] = 800,
+    height: Annotated[int, typer.Option(min=16, max=1080, help="image height, pixels")] = 600,
+) -> None:
+    """Render a picture of SCENE headless on the CPU (EGL, else OSMesa), from the environment's camera."""
+    from morsec.render import render_build
+    from morsec.runtime.launch import prepare_build
+    try:
+        build_dir, _ = prepare_build(scene, None)
+        path = render_build(build_dir, out, camera, width, height)
+    except MorsecError as err:
+        fail(err)
+    typer.echo(f"wrote {path}")
+
+
+@app.command()
+def components(name: Annotated[Optional[str], typer.Argument(help="a component id or builder class name")] = None) -> None:
+    """List the catalogue (built-in and this project's components), or describe one component."""
+    from morsec.catalogue import load_catalogue
+    from morsec.describe import catalogue_listing, component_markdown
+    from morsec.errors import did_you_mean
+    try:
+        cat = load_catalogue()
+        if name is None:
+            typer.echo(catalogue_listing(cat))
+            return
+        for kind in ("sensors", "actuators", "robots", "environments", "props"):
+            if cat.resolve(kind, name):
+                typer.echo(component_markdown(cat.get(kind, name)))
+                return
+        every = [n for kind in ("sensors", "actuators", "robots", "environments", "props") for n in cat.names(kind)]
+        raise MorsecError(f"no component {name!r} in the catalogue{did_you_mean(name, every)}")
+    except MorsecError as err:
+        fail(err)
+
+
+@app.command()
+def convert(
+    scene: Annotated[Path, typer.Argument(help="scene to convert: a builder script .py, .yaml, .yml or .toml")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="file to write: .yaml, .yml or .toml")],
+) -> None:
+    """Write SCENE in another form (builder script -> YAML/TOML, YAML <-> TOML); the result builds the same."""
+    from morsec.convert import convert_scene
+    try:
+        convert_scene(scene, out)
+    except MorsecError as err:
+        fail(err)
+    typer.echo(f"converted {scene} -> {out}")
+
+
+@app.command()
 def version() -> None:
     """Print the versions of morsec and MuJoCo."""
     import mujoco

@@ -100,7 +100,8 @@ class Component:
 
     @classmethod
     def doc(cls) -> str:
-        return (cls.__doc__ or "").strip()
+        import inspect
+        return inspect.cleandoc(cls.__doc__ or "")
 
 
 class Device(Component):

@@ -14,7 +14,6 @@ import pytest
 import yourdfpy
 
 from morsec.catalogue import load_catalogue
-from morsec.compiler.urdf import expand_xacro
 
 CATALOGUE = load_catalogue(Path(__file__).parent)  # what build_scene sees for a scene outside a project
 ROBOTS = CATALOGUE.ids("robots")

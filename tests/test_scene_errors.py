@@ -7,6 +7,7 @@ here is where each error is reported and what it says, matched whole.
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import shutil
@@ -184,7 +185,7 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
     ("list_for_mapping.yaml", "environment: [empty]\n", 1, 14, r"environment: must be a mapping \(key: value\), got a list \['empty'\]"),
     ("missing_type.yaml", "robots:\n  - name: robot\n", 2, 5, r"robots\[0\]: missing key 'type': the robot's catalogue id, e.g. 'atrv'"),
     ("builder_name_typo.yaml", "robots:\n  - type: ATRVV\n", 2, 11, r"robots\[0\]\.type: unknown robot type 'ATRVV'; did you mean 'ATRV'\?"),
-    ("no_levels.yaml", "robots:\n  - type: atrv\n    components: [{type: pose, level: raw}]\n", 3, 41,
+    ("no_levels.yaml", "robots:\n  - type: atrv\n    components: [{type: pose, level: raw}]\n", 3, 38,
      r"robots\[0\]\.components\[0\]\.level: component type 'pose' has no levels; remove 'level'"),
     ("object_type.yaml", "objects:\n  - type: boxx\n", 2, 11,
      rf"objects\[0\]\.type: unknown object type 'boxx' \(known: {NAMES}\); did you mean 'box'\?"),
@@ -193,8 +194,8 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
     ("property_value.yaml", "robots:\n  - type: atrv\n    components:\n      - type: motion_vw\n"
      "        properties: {ControlType: Speed}\n", 5, 35,
      r"robots\[0\]\.components\[0\]\.properties\.ControlType: 'Speed' is not one of 'Velocity' or 'Position'"),
-    ("empty_name.yaml", "robots:\n  - {name: '', type: atrv}\n", 2, 13, r"robots\[0\]\.name: a name cannot be empty"),
-    ("robot_vs_object.yaml", "robots:\n  - {name: thing, type: atrv}\nobjects:\n  - {name: thing, type: box}\n", 4, 13,
+    ("empty_name.yaml", "robots:\n  - {name: '', type: atrv}\n", 2, 12, r"robots\[0\]\.name: a name cannot be empty"),
+    ("robot_vs_object.yaml", "robots:\n  - {name: thing, type: atrv}\nobjects:\n  - {name: thing, type: box}\n", 4, 12,
      r"objects\[0\]\.name: duplicate name 'thing': robots and objects share one namespace; rename one of them"),
     ("duplicate_key.yaml", "environment:\n  name: empty\n  name: sandbox\n", 3, 3,
      r"environment\.name: duplicate key 'name': each key may appear once in a mapping"),
@@ -204,9 +205,9 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
      r"YAML syntax error: expected a single document in the stream, but found another document"),
     ("not_a_mapping.yaml", "- type: atrv\n", 1, 1,
      r"a scene must be a mapping with environment, robots, objects and zones, got a list \[\{'type': 'atrv'\}\]"),
-    ("unknown_modifier.yaml", "robots:\n  - type: atrv\n    components: [{type: pose, modifiers: [{name: nois}]}]\n", 3, 51,
+    ("unknown_modifier.yaml", "robots:\n  - type: atrv\n    components: [{type: pose, modifiers: [{name: nois}]}]\n", 3, 50,
      r"robots\[0\]\.components\[0\]\.modifiers\[0\]\.name: unknown modifier 'nois'; did you mean one of .*\?"),
-    ("multinode.yaml", "robots: [{type: atrv}]\nenvironment:\n  multinode: {distribution: {node1: [atrv, ghost]}}\n", 3, 42,
+    ("multinode.yaml", "robots: [{type: atrv}]\nenvironment:\n  multinode: {distribution: {node1: [atrv, ghost]}}\n", 3, 44,
      r"environment\.multinode\.distribution\.node1\[1\]: multinode node 'node1' lists robot 'ghost', which is not in the scene"),
     ("toml_table_key.toml", "[environment.time]\nfrequency = 60\nsteps = 3\n", 3, 1,
      r"environment\.time\.steps: unknown key 'steps'; allowed keys: .*"),
@@ -216,8 +217,8 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
      '[[robots.components.components]]\ntype = "odometry"\nlevel = "integrate"\n', 7, 9,
      r"robots\[0\]\.components\[0\]\.components\[0\]\.level: unknown level 'integrate' of component type 'odometry' "
      r"\(levels: .*\); did you mean 'integrated'\?"),
-    ("toml_sub_table.toml", '[[robots]]\ntype = "atrv"\n[[robots]]\ntype = "rmax"\n[robots.properties]\nNoGravity = 1\n',
-     6, 13, r"robots\[1\]\.properties\.NoGravity: must be true or false, got 1"),
+    ("toml_sub_table.toml", '[[robots]]\ntype = "atrv"\n[[robots]]\ntype = "rmax"\n[robots.properties]\nNoGravity = 2\n',
+     6, 13, r"robots\[1\]\.properties\.NoGravity: must be true or false, got the number 2"),
     ("toml_multiline_array.toml", '[[robots]]\ntype = "atrv"\ntranslate = [\n  0.0,  # x\n  "y",\n  0.0,\n]\n', 5, 3,
      r"robots\[0\]\.translate\[1\]: must be a number, got the string 'y'"),
     ("toml_duplicate_key.toml", '[environment]\nname = "empty"\nname = "sandbox"\n', 3, 17,
@@ -365,22 +366,23 @@ def test_rebuild_replaces_a_previous_build(tmp_path):
 
 ODD_NAMES = {"robot": 'r<&"x\'>', "component": "p<&\"]]>", "object": "b&amp;<", "zone": "z\"'"}
 XACRO_LOOKALIKE = "${1+1}$(env_HOME)"  # xacro substitutions, which must stay text
+q = json.dumps  # a JSON string is a YAML double-quoted string
 
 
 @pytest.fixture
 def odd_build(tmp_path) -> Path:
     scene = write(tmp_path, "names.yaml", f"""\
         robots:
-          - name: {ODD_NAMES['robot']!r}
+          - name: {q(ODD_NAMES['robot'])}
             type: atrv
             components:
-              - {{name: {ODD_NAMES['component']!r}, type: pose, streams: [socket]}}
-          - name: {XACRO_LOOKALIKE!r}
+              - {{name: {q(ODD_NAMES['component'])}, type: pose, streams: [socket]}}
+          - name: {q(XACRO_LOOKALIKE)}
             type: pioneer3dx
         objects:
-          - {{name: {ODD_NAMES['object']!r}, type: box}}
+          - {{name: {q(ODD_NAMES['object'])}, type: box}}
         zones:
-          - {{name: {ODD_NAMES['zone']!r}, type: Charging}}
+          - {{name: {q(ODD_NAMES['zone'])}, type: Charging}}
         """)
     out = tmp_path / "out"
     build_scene(scene, out)

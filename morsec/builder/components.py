@@ -315,8 +315,11 @@ class AbstractComponent:
 
     def add_stream(self, datastream, method=None, path=None, classpath=None, direction=None, **kwargs):
         """Stream the component's data through a middleware ('socket', 'text', or a full binding)."""
-        self._require("add_stream", "device")
-        middleware, fields = self._middleware_of(datastream, "add_stream")
+        self._add_stream("add_stream", datastream, method, path, classpath, direction, **kwargs)
+
+    def _add_stream(self, call, datastream, method=None, path=None, classpath=None, direction=None, **kwargs):
+        self._require(call, "device")
+        middleware, fields = self._middleware_of(datastream, call)
         entry: dict[str, Any] = {"middleware": middleware, **fields}
         for key, value in (("method", method), ("path", path), ("classpath", classpath), ("direction", direction)):
             if value is not None:
@@ -330,7 +333,7 @@ class AbstractComponent:
         if component is not None:
             self._morse_only("configure_mw", {"component": component},
                              "(component=...) borrows another component's serializer; morsec has one per component")
-        self.add_stream(datastream, method, path)
+        self._add_stream("configure_mw", datastream, method, path)
 
     def add_service(self, interface, component=None, config=None):
         """Expose the component's services through a middleware ('socket')."""

@@ -8,7 +8,6 @@ from __future__ import annotations
 import copy
 import json
 import logging
-import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path

@@ -5,8 +5,11 @@ from morsec.component import Actuator, ComponentProperties, DataField, service
 
 class MotionVW(Actuator):
     """Linear and angular velocity in the robot's frame (v forward, w about z), re-applied every tick.
-    Kinematic, as MORSE: the robot's body velocity is set; ground robots keep the vertical velocity,
-    roll and pitch rates that gravity and contacts give them."""
+    As MORSE's, it sets the robot's body velocity rather than wheel torques: stiff MuJoCo velocity servos
+    on the robot's base hold forward speed v, lateral speed 0 and yaw rate w inside every physics step,
+    while vertical motion, roll and pitch stay free (gravity and contacts act: ground robots stay on the
+    ground, go over slopes and are stopped by walls). ControlType 'Position' displaces the robot by
+    v/frequency and rotates it by w/frequency each tick instead, kinematically."""
 
     short_descr = "Forward speed and yaw rate of the robot"
     builder_name = "MotionVW"

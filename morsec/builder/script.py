@@ -1,0 +1,149 @@
+"""Run a builder script and hand its scene to the shared pipeline.
+
+    morsec build mysim.py        load_scene -> run_builder_script -> validate_scene (same as YAML)
+    python mysim.py [-- CMD ...] Environment.create() -> standalone_main -> `morsec CMD mysim.py ...`
+
+Any problem is one line naming the script's file:line (exit 2, no traceback): a builder call that
+cannot be recorded, a method that does not exist, an exception raised by the script itself.
+"""
+
+from __future__ import annotations
+
+import builtins
+import os
+import sys
+import traceback
+from contextlib import contextmanager
+from pathlib import Path
+
+from pydantic import BaseModel
+
+from morsec.builder import session as _session
+from morsec.builder.hook import morse_import_hook
+from morsec.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
+from morsec.catalogue import Catalogue, load_catalogue
+from morsec.errors import MorsecError, SceneError
+
+# recordings of scripts that ran as plain Python in this process (python mysim.py), by absolute path
+_preloaded: dict[str, Recording] = {}
+
+
+def run_builder_script(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
+    """The validated, resolved IR of a builder script (what load_scene gives for YAML)."""
+    from morsec.scene.loader import validate_scene
+    path = Path(path)
+    cat = catalogue or load_catalogue(path.parent)
+    recording = record_script(path, cat)
+    recording.report()
+    return validate_scene(recording.data, recording.smap, cat)
+
+
+def record_script(path: Path, catalogue: Catalogue | None = None) -> Recording:
+    """Execute the script with the builder recording: the raw scene dict, its source map, the warnings."""
+    path = Path(path)
+    key = os.path.abspath(path)
+    if key in _preloaded:
+        return _preloaded.pop(key)
+    try:
+        source = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError(f"{path}: no such builder script") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise SceneError(f"{path}: cannot read: {err}") from None
+    try:
+        code = compile(source, str(path), "exec", dont_inherit=True)
+    except SyntaxError as err:
+        raise SceneError(f"Python syntax error: {err.msg}", str(path), err.lineno, err.offset) from None
+    cat = catalogue or load_catalogue(path.parent)
+    session = Session(cat, path)
+    namespace = {"__name__": "__main__", "__file__": str(path.resolve()), "__builtins__": builtins,
+                 "__doc__": None, "__package__": None, "__spec__": None, "__loader__": None, "__cached__": None}
+    with _running(session, path):
+        try:
+            exec(code, namespace)
+        except MorsecError:
+            raise
+        except SystemExit as stop:
+            if stop.code not in (None, 0):
+                raise SceneError(f"the script exited with {stop.code!r}", *_script_position(stop, path)) from None
+        except RecursionError as err:
+            raise script_error(err, path) from None
+        except Exception as err:
+            raise script_error(err, path) from None
+        session.end_of_script(namespace)
+        return session.recording()
+
+
+@contextmanager
+def _running(session: Session, path: Path):
+    """The session is current, `morse.builder` imports resolve to morsec, the script's folder is on sys.path."""
+    saved_argv, saved_path = sys.argv, list(sys.path)
+    sys.argv = [str(path)]
+    sys.path.insert(0, str(path.resolve().parent))
+    _session.push(session)
+    try:
+        with morse_import_hook():
+            yield
+    finally:
+        _session.pop(session)
+        sys.argv = saved_argv
+        sys.path[:] = saved_path
+
+
+def _script_position(err: BaseException, path: Path) -> tuple[str, int | None, int | None]:
+    """file, line, column of the innermost frame of the script (else of the innermost user frame)."""
+    target = os.path.abspath(path)
+    frames = traceback.extract_tb(err.__traceback__)
+    chosen = None
+    for frame in frames:
+        if os.path.abspath(frame.filename) == target:
+            chosen = frame
+    if chosen is None:
+        user = [f for f in frames if not is_builder_file(f.filename) and f.filename != __file__]
+        chosen = user[-1] if user else None
+    if chosen is None:
+        return str(path), None, None
+    col = (chosen.colno + 1) if getattr(chosen, "colno", None) is not None else None
+    filename = str(path) if os.path.abspath(chosen.filename) == target else chosen.filename
+    return filename, chosen.lineno, col
+
+
+def script_error(err: BaseException, path: Path) -> SceneError:
+    file, line, col = _script_position(err, path)
+    if isinstance(err, BuilderAttributeError):
+        message = str(err)
+    elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] == "morse":
+        message = (f"{type(err).__name__}: {err}: morsec provides morse.builder only (MORSE's core, middleware "
+                   "and testing modules have no morsec equivalent)")
+    else:
+        text = str(err).strip().splitlines()
+        message = f"{type(err).__name__}: {text[0]}" if text else type(err).__name__
+    return SceneError(message, file, line, col)
+
+
+# ---------------------------------------------------------------- python mysim.py
+
+def morsec_args(argv: list[str], script: str) -> list[str]:
+    """`python mysim.py -- run --fast` -> ['run', 'mysim.py', '--fast']; nothing after `--` -> build."""
+    rest = argv[argv.index("--") + 1:] if "--" in argv else []
+    if not rest or rest[0].startswith("-"):
+        rest = ["build", *rest]
+    return [rest[0], script, *rest[1:]]
+
+
+def standalone_main(session: Session) -> None:
+    """The script ran as plain Python: hand its recording to the `morsec` command line (exits)."""
+    from morsec.cli import app
+    main = sys.modules.get("__main__")
+    namespace = getattr(main, "__dict__", None)
+    script = session.script
+    if script is None:
+        sys.stderr.write("error: cannot tell which script is running; use `morsec build SCRIPT`\n")
+        raise SystemExit(2)
+    try:
+        session.end_of_script(namespace)
+        _preloaded[os.path.abspath(script)] = session.recording()
+    except MorsecError as err:
+        sys.stderr.write(f"error: {err}\n")
+        raise SystemExit(err.exit_code) from None
+    app(args=morsec_args(sys.argv[1:], str(script)), prog_name="morsec")

@@ -1,0 +1,69 @@
+"""`morsec render`: a picture of a scene from a camera, headless on the CPU (EGL, else OSMesa)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from morsec.errors import MorsecError, RuntimeFailure
+
+DEFAULT_CAMERA = "morsec_default"  # the environment's camera (set_camera_location / set_camera_rotation)
+
+
+def open_renderer(model, width: int, height: int):
+    """A mujoco.Renderer, or a one-line RuntimeFailure naming the system package that is missing."""
+    import os
+
+    import mujoco
+    max_w, max_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
+    if width > max_w or height > max_h:
+        raise MorsecError(f"image {width}x{height} is larger than the scene's offscreen buffer {max_w}x{max_h}")
+    try:
+        return mujoco.Renderer(model, height, width)
+    except Exception as err:  # no GL at all, or a backend that cannot start
+        backend = os.environ.get("MUJOCO_GL", "")
+        package = {"egl": "libegl1 and libgl1-mesa-dri (Debian)", "osmesa": "libosmesa6 (Debian)"}.get(
+            backend, "libegl1 or libosmesa6 (Debian)")
+        raise RuntimeFailure(f"cannot render with MUJOCO_GL={backend or '(unset)'}: {err}; install {package} "
+                             "or set MUJOCO_GL=osmesa") from None
+
+
+def render_build(build_dir: Path, out: Path, camera: str | None = None, width: int = 800, height: int = 600) -> Path:
+    import mujoco
+    manifest = json.loads((Path(build_dir) / "manifest.json").read_text())
+    model = mujoco.MjModel.from_xml_path(str(Path(build_dir) / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    name = camera or DEFAULT_CAMERA
+    if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, name) < 0:
+        cameras = [model.camera(i).name for i in range(model.ncam)]
+        raise MorsecError(f"no camera {name!r} in the scene; cameras: {', '.join(cameras)}")
+    renderer = open_renderer(model, width, height)
+    try:
+        options = display_options(manifest["scene"]["environment"])
+        renderer.update_scene(data, camera=name, scene_option=options)
+        if manifest["scene"]["environment"]["viewport"]["shade"] in ("WIREFRAME", "BOUNDBOX") \
+                or manifest["scene"]["environment"]["fastmode"]:
+            renderer.scene.flags[mujoco.mjtRndFlag.mjRND_WIREFRAME] = 1
+        image = renderer.render()
+    finally:
+        renderer.close()
+    from morsec.png import write_png
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_png(out, np.asarray(image))
+    return out
+
+
+def display_options(environment: dict):
+    """The seed's display settings mapped onto MuJoCo's visualisation options where there is an equivalent:
+    show_physics shows collision geometry and contacts."""
+    import mujoco
+    option = mujoco.MjvOption()
+    if environment.get("show_physics"):
+        option.geomgroup[3] = 1
+        option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTPOINT] = 1
+        option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTFORCE] = 1
+    return option
