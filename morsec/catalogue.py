@@ -159,8 +159,8 @@ def component_class(kind: str, cid: str, start: Path | None = None) -> type[Comp
     for root in search_path(start):
         folder = root / kind / cid
         if (folder / "component.py").is_file():
-            digest = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8]
-            module = sys.modules.get(f"morsec_components.{kind}.{re.sub(r'\W', '_', cid)}_{digest}")
+            digest, safe_id = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8], re.sub(r"\W", "_", cid)
+            module = sys.modules.get(f"morsec_components.{kind}.{safe_id}_{digest}")  # as load_component names it
             loaded = getattr(module, "COMPONENT", None)
             return loaded if getattr(loaded, "id", None) == cid else load_component(folder, kind, cid)
     raise MorsecError(f"no {kind[:-1]} {cid!r} on the component search path")
