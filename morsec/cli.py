@@ -81,12 +81,17 @@ def run(
     port_base: Annotated[Optional[int], typer.Option(help="first stream port instead of 60000")] = None,
     seed: Annotated[Optional[int], typer.Option(help="random seed for noise (default: the scene's)")] = None,
     out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+    view: Annotated[Optional[str], typer.Option(
+        help="web: MuJoCo Studio's web viewer on --bind (prints the URL); native: mujoco.viewer (needs a display)")] = None,
+    view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
     from morsec.runtime.launch import prepare_build, run_simulation
     from morsec.runtime.simulation import RunOptions
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+    if view not in (None, "web", "native"):
+        fail(MorsecError(f"--view must be web or native, got {view!r}"))
     if time_strategy not in (None, "best_effort", "fixed_step"):
         fail(MorsecError(f"--time-strategy must be best_effort or fixed_step, got {time_strategy!r}"))
     for name, value in (("--duration", duration), ("--time-scale", time_scale)):
@@ -95,7 +100,7 @@ def run(
     try:
         build_dir, cat = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
-                             port_base=port_base, seed=seed)
+                             port_base=port_base, seed=seed, view=view, view_port=view_port)
         run_simulation(build_dir, cat, options, duration)
     except MorsecError as err:
         fail(err)

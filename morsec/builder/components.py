@@ -169,6 +169,14 @@ class AbstractComponent:
         if self._session.renamed:
             self._session.assign_names()
 
+    @staticmethod
+    def close_context(level=1):
+        """Name the objects created so far after the variables holding them (for loops, as in MORSE)."""
+        session = _session.current()
+        frame = session.caller_frame()
+        if frame is not None:
+            session.scan(frame)
+
     def _default_label(self) -> str:
         return self._emit_type() or type(self).__name__.lower()
 

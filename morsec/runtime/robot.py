@@ -47,6 +47,13 @@ class RobotHandle:
             d.ctrl[self.servo[0]] = linear[0]
             d.ctrl[self.servo[1]] = linear[1]
             d.ctrl[self.servo[2]] = angular[2]
+            if self.free and not self.ground:
+                # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
+                # whole body velocity of any robot that is not a GroundRobot)
+                _, rot = self.pose()
+                v = d.qvel[self.qvel_adr:self.qvel_adr + 6]
+                v[:3] = rot @ np.asarray(linear, float)
+                v[3:] = angular
         elif self.free:
             _, rot = self.pose()
             v = self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
@@ -87,3 +94,59 @@ class RobotHandle:
         rel_pos = base_rot.T @ (frame_pos - base_pos)
         new_rot = np.asarray(rot) @ rel_rot.T
         self.set_pose(np.asarray(pos) - new_rot @ rel_pos, new_rot)
+
+    # ---- forces: actuators that fly a robot (rotorcraft controllers) push its base body through
+    # d.xfrc_applied, which MuJoCo keeps applying over the physics sub-steps until it is changed
+    def subtree(self) -> list[int]:
+        """The robot's bodies: its base and every body below it."""
+        m = self.sim.model
+        return [b for b in range(self.body_id, m.nbody)
+                if b == self.body_id or _descends(m, b, self.body_id)]
+
+    @property
+    def mass(self) -> float:
+        return float(self.sim.model.body_subtreemass[self.body_id])
+
+    def weight(self) -> float:
+        """Magnitude of the gravity force the robot feels, N (parts compensated by gravcomp excluded)."""
+        m = self.sim.model
+        g = float(np.linalg.norm(m.opt.gravity))
+        return g * sum(float(m.body_mass[b]) * (1.0 - float(m.body_gravcomp[b])) for b in self.subtree())
+
+    def inertia(self) -> np.ndarray:
+        """3x3 inertia tensor of the whole robot about its centre of mass, in the base frame, kg m^2."""
+        m, d = self.sim.model, self.sim.data
+        base_pos, base_rot = self.pose()
+        com = d.subtree_com[self.body_id]
+        total = np.zeros((3, 3))
+        for b in self.subtree():
+            mass = float(m.body_mass[b])
+            if mass <= 0:
+                continue
+            rot = base_rot.T @ d.ximat[b].reshape(3, 3)
+            total += rot @ np.diag(m.body_inertia[b]) @ rot.T
+            r = base_rot.T @ (d.xipos[b] - com)
+            total += mass * (float(r @ r) * np.eye(3) - np.outer(r, r))
+        return total
+
+    def velocity(self) -> tuple[np.ndarray, np.ndarray]:
+        """(linear, angular) velocity of the base frame's origin, world frame."""
+        res = np.zeros(6)
+        mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_BODY, self.body_id, res, 0)
+        return res[3:].copy(), res[:3].copy()
+
+    def apply_wrench(self, key: str, force, torque) -> None:
+        """Set the world-frame force and torque that `key` (an actuator's name) applies at the base body's
+        centre of mass; the contributions of several actuators add up. Stays applied until changed."""
+        if not hasattr(self, "_wrenches"):
+            self._wrenches: dict[str, np.ndarray] = {}
+        self._wrenches[key] = np.concatenate([np.asarray(force, float), np.asarray(torque, float)])
+        self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
+
+
+def _descends(m, body: int, ancestor: int) -> bool:
+    while body:
+        body = int(m.body_parentid[body])
+        if body == ancestor:
+            return True
+    return False

@@ -43,6 +43,8 @@ class RunOptions:
     port_base: int | None = None
     seed: int | None = None
     output_dir: Path = field(default_factory=Path.cwd)  # where text streams write
+    view: str | None = None  # "web" | "native": watch the simulation
+    view_port: int = 8080
 
 
 @dataclass
@@ -158,6 +160,15 @@ class Simulation:
                           ("communication", Communication(self))):
             self.requests.expose(name, obj, _services_of(obj))
         self._bind(middleware)
+        self.view = None
+        if self.options.view:
+            from morsec.runtime.view import open_view
+            try:
+                self.view = open_view(self.options.view, self.model, self.data, self.options.bind,
+                                      self.options.view_port, env)
+            except BaseException:
+                self.close()
+                raise
 
     # ---------------------------------------------------------------- construction
     def _robot(self, entry: dict, cat: Catalogue) -> RobotInfo:
@@ -345,6 +356,8 @@ class Simulation:
                     continue
                 self.step()
                 self.service_server.flush()
+                if self.view is not None:
+                    self.view.sync()
                 self._wait(self.clock.delay())
         finally:
             self.close()
@@ -419,6 +432,9 @@ class Simulation:
             text.write(inst.local_data)
 
     def close(self) -> None:
+        if getattr(self, "view", None) is not None:
+            self.view.close()
+            self.view = None
         for comp in getattr(self, "components", []):
             for stream in comp.socket_streams:
                 stream.close()

@@ -1,0 +1,77 @@
+import math
+import time
+
+import numpy as np
+
+from morsec.component import DataField, Level, Sensor
+
+RAW = ("raw", "extended")
+STILL = 1e-6  # m/s: below this horizontal speed the heading is not observable
+
+
+class GPS(Sensor):
+    """Position of the sensor: scene coordinates (`simple`), or geodetic coordinates through WGS84 with
+    the East-North-Up velocity (`raw`), plus UTC date, time and heading (`extended`). The geodetic
+    levels need the environment properties `longitude`, `latitude` (degrees) and `altitude` (m) of the
+    scene origin, and optionally `angle_against_north` (degrees)."""
+
+    short_descr = "GPS: scene or geodetic position, velocity, date, time and heading"
+    builder_name = "GPS"
+    frequency = 60.0
+    levels = (
+        Level("simple", None, "position of the sensor in the scene frame", default=True),
+        Level("raw", "RawGPS", "geodetic position (WGS84) and East-North-Up velocity"),
+        Level("extended", "ExtendedGPS", "raw, plus UTC date and time and the heading, as a GPS sentence"),
+    )
+    data = (
+        DataField("x", 0.0, "float", "x coordinate of the sensor, scene (world) frame, m", level="simple"),
+        DataField("y", 0.0, "float", "y coordinate of the sensor, scene (world) frame, m", level="simple"),
+        DataField("z", 0.0, "float", "z coordinate of the sensor, scene (world) frame, m", level="simple"),
+        DataField("longitude", 0.0, "double", "longitude, degrees in [-180, 180]", level=RAW),
+        DataField("latitude", 0.0, "double", "latitude, degrees in [-90, 90]", level=RAW),
+        DataField("altitude", 0.0, "double", "altitude above the WGS84 ellipsoid, m (same reference as the "
+                  "environment's altitude)", level=RAW),
+        DataField("velocity", [0.0, 0.0, 0.0], "vec3<float>", "velocity along East, North, Up, m/s", level=RAW),
+        DataField("date", "000000", "DDMMYY", "UTC date of the timestamp", level="extended"),
+        DataField("time", "000000", "HHMMSS", "UTC time of the timestamp", level="extended"),
+        DataField("heading", 0.0, "float", "heading of the sensor's x axis, degrees clockwise from true north "
+                  "in [0, 360); inf when the sensor does not move", level="extended"),
+    )
+
+    def default_action(self):
+        x, y, z = (float(v) for v in self.position())
+        self.local_data.update(x=x, y=y, z=z)
+
+
+class RawGPS(GPS):
+    def start(self):
+        self.geo = self.sim.geo  # ValueError (the simulation does not start) without geodetic properties
+        self.previous_enu = self.geo.to_enu(self.position())
+        self.enu_velocity = np.zeros(3)
+
+    def default_action(self):
+        enu = self.geo.to_enu(self.position())
+        # finite difference over the nominal period, as MORSE (a kinematic move is seen too)
+        self.enu_velocity = (enu - self.previous_enu) * self.frequency
+        self.previous_enu = enu
+        lat, lon, alt = self.geo.to_geodetic(self.position())
+        self.local_data.update(longitude=float(lon), latitude=float(lat), altitude=float(alt),
+                               velocity=[float(v) for v in self.enu_velocity])
+
+
+class ExtendedGPS(RawGPS):
+    def default_action(self):
+        super().default_action()
+        utc = time.gmtime(float(self.local_data["timestamp"]))
+        self.local_data["date"] = time.strftime("%d%m%y", utc)
+        self.local_data["time"] = time.strftime("%H%M%S", utc)
+        east, north = self.enu_velocity[0], self.enu_velocity[1]
+        if abs(east) < STILL and abs(north) < STILL:
+            self.local_data["heading"] = float("inf")  # not observable standing still
+        else:
+            forward = self.geo.to_enu(self.rotation()[:, 0])
+            heading = math.degrees(math.atan2(forward[0], forward[1])) % 360.0
+            self.local_data["heading"] = heading if heading < 360.0 else 0.0
+
+
+COMPONENT = GPS

@@ -1,0 +1,23 @@
+from pydantic import Field
+
+from morsec.catalogue import component_class
+
+LaserScanner = component_class("sensors", "laser_scanner")
+
+
+class Sick(LaserScanner):
+    """SICK LMS laser range scanner (MORSE's `Sick` builder): one flat layer of 181 rays, 1 degree apart
+    over 180 degrees, up to 30 m, 10 scans per second. Ray 0 points right (-y), ray 90 straight ahead
+    (+x), ray 180 left (+y). See `laser_scanner` for the fields, levels and ray geometry."""
+
+    short_descr = "SICK LMS laser scanner: 180 deg, 1 deg, 30 m, 10 Hz (181 rays)"
+    builder_name = "Sick"
+    frequency = 10.0
+
+    class Properties(LaserScanner.Properties):
+        laser_range: float = Field(30.0, gt=0, description="detection range, m; can be changed while running")
+        scan_window: float = Field(180.0, ge=0, le=360, description="full angle covered, deg (fixed at start)")
+        resolution: float = Field(1.0, gt=0, description="angle between two rays, deg (fixed at start)")
+
+
+COMPONENT = Sick
