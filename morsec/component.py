@@ -239,6 +239,10 @@ class Robot(Component):
     spawn_height: ClassVar[float] = 0.0
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     collision: ClassVar[bool] = True
+    # components every robot of this type carries unless the scene lists one of the same name, e.g.
+    # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
+    # that append their own actuators and sensors in __init__
+    default_components: ClassVar[tuple[dict, ...]] = ()
 
 
 class Environment(Component):

@@ -22,7 +22,7 @@ from pydantic_core import PydanticUndefined
 
 from morsec.catalogue import Catalogue
 from morsec.component import KINDS, Device
-from morsec.scene.schema import json_schema, scene_model
+from morsec.scene.schema import GENERATED_MODULE, json_schema, scene_model
 
 GENERATED_PAGES = ("scene-format.md", "components.md")
 REGENERATE = "morsec docs -o docs"
@@ -121,21 +121,18 @@ def scene_format_page(cat: Catalogue) -> str:
         out.append("| key | type | default | description |\n|---|---|---|---|\n")
         for key, info in cls.model_fields.items():
             prop = definition.get("properties", {}).get(key, {})
-            type_text, default, doc = _field_row(section.model, key, info, prop, refs)
-            doc = doc or _inherited_description(cls, key)
+            type_text, default, doc = _field_row(section.model, key, info, prop, refs,
+                                                 _declared_description(cls, key))
             out.append(f"| `{key}` | {type_text} | {default} | {_cell(doc)} |\n")
     return "".join(out)
 
 
-def _field_row(model: str, key: str, info: FieldInfo, prop: dict, refs: dict) -> tuple[str, str, str]:
-    doc = info.description or prop.get("description") or ""
+def _field_row(model: str, key: str, info: FieldInfo, prop: dict, refs: dict, doc: str) -> tuple[str, str, str]:
     type_text = _type_text(prop, refs)
     default = _default_text(info)
     if model in ("robot", "component") and key == "type":
-        what, example = ("robot", "`atrv` or `ATRV`") if model == "robot" else \
-            ("sensor or actuator", "`motion_vw` or `MotionVW`")
+        what = "robot" if model == "robot" else "sensor or actuator"
         type_text = f"string: a {what} of [the catalogue](components.md)"
-        doc = f"catalogue id or MORSE builder class name, e.g. {example}"
     elif model in ("robot", "component") and key == "properties":
         type_text = "mapping: the type's properties"
         default = "the type's defaults"
@@ -156,9 +153,11 @@ def _field_row(model: str, key: str, info: FieldInfo, prop: dict, refs: dict) ->
     return type_text, default, doc
 
 
-def _inherited_description(cls: type[BaseModel], key: str) -> str:
-    """The description a generated model's field lost when it was redeclared (e.g. `environment`)."""
-    for klass in cls.__mro__:
+def _declared_description(cls: type[BaseModel], key: str) -> str:
+    """A field's description as declared in morsec/scene/models.py; the per-catalogue models generated
+    from them (morsec.scene.schema) redeclare a few fields with shorter, catalogue-specific ones."""
+    classes = [k for k in cls.__mro__ if k.__module__ != GENERATED_MODULE] + [cls]
+    for klass in classes:
         fields = getattr(klass, "model_fields", None)
         if isinstance(fields, dict) and key in fields and fields[key].description:
             return fields[key].description

@@ -66,13 +66,14 @@ class Harness:
 
 
 @contextlib.contextmanager
-def simulate(scene: str | dict, tmp_path: Path, *, sockets: bool = False, seed: int | None = None,
-             name: str = "scene") -> Iterator[Harness]:
+def simulate(scene: str | dict, tmp_path: Path, *, project: Path | None = None, sockets: bool = False,
+             seed: int | None = None, name: str = "scene") -> Iterator[Harness]:
+    """`project`: a folder of a morsec project whose components the scene uses (default: the current one)."""
     tmp_path = Path(tmp_path)
     text = scene if isinstance(scene, str) else yaml.safe_dump(scene, sort_keys=False)
     source = tmp_path / f"{name}.yaml"
     source.write_text(text)
-    cat = load_catalogue(tmp_path)
+    cat = load_catalogue(Path(project) if project is not None else Path.cwd())
     build_dir = build_scene(source, tmp_path / f"build-{name}", cat)
     options = RunOptions(strategy="fixed_step", seed=seed, output_dir=tmp_path,
                          service_port=0 if not sockets else 0, port_base=0)

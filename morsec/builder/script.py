@@ -22,7 +22,7 @@ from morsec.builder import session as _session
 from morsec.builder.hook import morse_import_hook
 from morsec.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
 from morsec.catalogue import Catalogue, load_catalogue
-from morsec.errors import MorsecError, SceneError
+from morsec.errors import MorsecError, SceneError, did_you_mean
 
 # recordings of scripts that ran as plain Python in this process (python mysim.py), by absolute path
 _preloaded: dict[str, Recording] = {}
@@ -118,6 +118,11 @@ def script_error(err: BaseException, path: Path) -> SceneError:
     else:
         text = str(err).strip().splitlines()
         message = f"{type(err).__name__}: {text[0]}" if text else type(err).__name__
+        name = getattr(err, "name", None)
+        if isinstance(err, NameError) and isinstance(name, str) and name[:1].isupper():
+            import morsec.builder as builder
+            message += (f"{did_you_mean(name, builder.__all__)} (no builder class of that name: "
+                        "`morsec components` lists the catalogue)")
     return SceneError(message, file, line, col)
 
 

@@ -146,14 +146,20 @@ class Simulation:
                                                    for c in manifest["components"]]
         self.by_name = {c.fqn: c for c in self.components}
         self.actuators = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "actuator"]
-        self.sensors = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "sensor"]
+        # sensors that gather others' data (tick_last: compound) tick after them in each frame
+        last = lambda c: bool(getattr(c.instance, "tick_last", False))  # noqa: E731
+        self.sensors = [c for c in sorted(self.components, key=lambda c: (last(c), c.fqn)) if c.kind == "sensor"]
         self.objects = self._scene_objects()
         self.zones = [Zone(z["name"], z["type"], np.array(z["translate"], float), np.array(z["size"], float) / 2,
                            dict(z["properties"])) for z in self.scene["zones"]]
         self.initial_state = (self.data.qpos.copy(), self.data.qvel.copy(), self.data.act.copy(),
                               self.model.body_pos.copy(), self.model.body_quat.copy())
         for comp in self.components:
-            comp.instance.start()
+            try:
+                comp.instance.start()
+            except ValueError as err:  # a component that cannot work in this scene (missing geodetic properties ...)
+                self.poller.close()
+                raise RuntimeFailure(f"{comp.fqn}: {err}") from None
 
         self.time_services = TimeServices(self)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),

@@ -18,7 +18,7 @@ from morsec.catalogue import Catalogue, load_catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
 from morsec.scene.positions import SourceMap, parse_toml, parse_yaml
-from morsec.scene.resolve import resolve
+from morsec.scene.resolve import add_robot_defaults, resolve
 from morsec.scene.schema import scene_model
 
 YAML_SUFFIXES = (".yaml", ".yml")
@@ -62,6 +62,7 @@ def load_scene(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
 
 def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
     model = scene_model(cat)
+    add_robot_defaults(data, cat)
     try:
         scene = model.model_validate(data)
     except ValidationError as err:

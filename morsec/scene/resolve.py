@@ -11,6 +11,25 @@ from morsec.scene.naming import assign_names
 from morsec.scene.positions import SourceMap
 
 
+def add_robot_defaults(data: Any, cat: Catalogue) -> None:
+    """Before validation: append each robot type's `default_components` the scene does not name itself."""
+    import copy
+    if not isinstance(data, dict) or not isinstance(data.get("robots"), list):
+        return
+    for robot in data["robots"]:
+        if not isinstance(robot, dict) or not isinstance(robot.get("type"), str):
+            continue
+        rid = cat.resolve("robots", robot["type"])
+        defaults = cat.by_kind["robots"][rid].default_components if rid else ()
+        if not defaults:
+            continue
+        components = robot.setdefault("components", [])
+        if not isinstance(components, list):
+            continue
+        named = {c.get("name") or c.get("type") for c in components if isinstance(c, dict)}
+        components.extend(copy.deepcopy(c) for c in defaults if c["name"] not in named)
+
+
 def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     def fail(path: tuple, message: str) -> None:
         pos = smap.find(path) if smap else None

@@ -31,8 +31,8 @@ for i in range(2):
 
 # a robot from a list comprehension has no variable: it is named after its type
 others = [ATRV() for i in range(2)]
-for n, r in enumerate(others):
-    r.translate(x = 10.0 + n)
+for n in range(2):
+    others[n].translate(x = 10.0 + n)
 
 env = Environment('empty', fastmode = True)
 env.create()

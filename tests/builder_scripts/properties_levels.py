@@ -29,7 +29,6 @@ integ.profile()
 robot.append(integ)
 
 pose = Pose()
-pose.properties(abstraction_level = 'default') if False else None
 pose.frequency(frequency = 5)
 pose.add_stream('socket')
 robot.append(pose)

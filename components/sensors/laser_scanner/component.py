@@ -14,6 +14,12 @@ One `mujoco.mj_multiRay` call per scan, no Python loop over rays:
   geoms are therefore never seen by a laser;
 * results are converted with numpy: a hit point in the sensor frame is the ray's unit direction (sensor
   frame) times the hit distance, because the rays start at the sensor's origin.
+
+In `local_data` the three lists are numpy arrays (point_list N x 3, range_list and remission_list N),
+fresh at every scan: building ~4000 Python objects per Hokuyo scan would cost more than the ray cast
+itself. Every middleware writes them as plain lists (the socket stream's JSON is MORSE's exactly:
+`"point_list": [[x, y, z], ...]`); in-process readers (modifiers, tests) index them like lists or call
+`.tolist()`.
 """
 
 from __future__ import annotations
@@ -125,11 +131,10 @@ class LaserScanner(Sensor):
             matid = m.geom_matid
             specular[:m.ngeom] = np.where(matid >= 0, m.mat_specular[np.maximum(matid, 0)], DEFAULT_SPECULAR)
             self._remission = specular
-        zeros = [0.0, 0.0, 0.0]
-        self.local_data["point_list"] = [list(zeros) for _ in range(self.nray)]
-        self.local_data["range_list"] = [float(self.properties.laser_range)] * self.nray
+        self.local_data["point_list"] = np.zeros((self.nray, 3))
+        self.local_data["range_list"] = np.full(self.nray, float(self.properties.laser_range))
         if self._rssi:
-            self.local_data["remission_list"] = [0.0] * self.nray
+            self.local_data["remission_list"] = np.zeros(self.nray)
 
     # ---- one scan
     def world_directions(self, rot: np.ndarray) -> np.ndarray:
@@ -155,14 +160,11 @@ class LaserScanner(Sensor):
 
     def default_action(self) -> None:
         dirs, dist, geomid, laser_range = self.cast()
-        miss = (dist < 0) | (dist > laser_range)
-        dist[miss] = 0.0
-        self.local_data["point_list"] = (dirs * dist[:, None]).tolist()
-        dist[miss] = laser_range
-        self.local_data["range_list"] = dist.tolist()
+        hit = (dist >= 0.0) & (dist <= laser_range)
+        self.local_data["point_list"] = dirs * np.where(hit, dist, 0.0)[:, None]
+        self.local_data["range_list"] = np.where(hit, dist, laser_range)
         if self._rssi:
-            geomid[miss] = -1
-            self.local_data["remission_list"] = self._remission[geomid].tolist()
+            self.local_data["remission_list"] = self._remission[np.where(hit, geomid, -1)]
 
 
 COMPONENT = LaserScanner

@@ -1,0 +1,21 @@
+from pydantic import Field
+
+from morsec.component import Robot, RobotProperties
+
+
+class B21(Robot):
+    """RWI B21r: a round indoor research robot, 0.525 m in diameter and 1.20 m tall, 122 kg, one rigid
+    body as MORSE's. Its origin is on the floor, on the robot's vertical axis. Drive it with `motion_vw`
+    (kinematic body velocity, as MORSE)."""
+
+    short_descr = "Round indoor research robot (rigid body)"
+    builder_name = "B21"
+    xacro = "robot.urdf.xacro"
+    spawn_height = 0.0
+
+    class Properties(RobotProperties):
+        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
+                                  "under velocity actuators")
+
+
+COMPONENT = B21

@@ -1,0 +1,61 @@
+import math
+from typing import Literal
+
+import mujoco
+import numpy as np
+from pydantic import Field
+
+from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.geometry import matrix_to_quat, normalize_angle
+
+
+class Attitude(Sensor):
+    """Attitude of the sensor: its orientation (XYZ Euler angles) and its body rates, as an integrated
+    IMU or a gyroscope/gyrometer pair would give. Rates come from the physics (`ComputationMode`
+    Velocity) or from finite differences of the orientation over the nominal period (Position). With
+    `UseAngleAgainstNorth` the yaw is measured from true north (counter-clockwise, as the scene's yaw),
+    which needs the environment's geodetic properties."""
+
+    short_descr = "Orientation (Euler angles) and angular velocity of the sensor"
+    builder_name = "Attitude"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        UseAngleAgainstNorth: bool = Field(
+            False, description="yaw from true north instead of from the scene's x axis (needs the "
+            "environment's longitude, latitude, altitude and optionally angle_against_north)")
+        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
+            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
+            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+
+    data = (
+        DataField("rotation", [0.0, 0.0, 0.0], "Euler angles (XYZ)",
+                  "roll, pitch, yaw of the sensor, rad (yaw from north with UseAngleAgainstNorth)"),
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the sensor's x, y, z axes, rad/s"),
+    )
+
+    def start(self):
+        mode = self.properties.ComputationMode
+        self.mode = ("Velocity" if self.robot.free else "Position") if mode == "Automatic" else mode
+        self.previous_rot = self.rotation().copy()
+        # ValueError (the simulation does not start) when north is asked for without geodetic properties
+        self.geo = self.sim.geo if self.properties.UseAngleAgainstNorth else None
+
+    def default_action(self):
+        rot = self.rotation().copy()
+        if self.mode == "Velocity":
+            _, rates = self.velocity(local=True)
+        else:
+            rates = np.zeros(3)
+            mujoco.mju_quat2Vel(rates, matrix_to_quat(self.previous_rot.T @ rot), 1.0 / self.frequency)
+        self.previous_rot = rot
+        roll, pitch, yaw = self.euler()
+        if self.geo is not None:
+            forward = self.geo.to_enu(rot[:, 0])
+            bearing = math.atan2(forward[0], forward[1])  # clockwise from north
+            yaw = normalize_angle(-bearing)
+        self.local_data["rotation"] = [float(roll), float(pitch), float(yaw)]
+        self.local_data["angular_velocity"] = [float(v) for v in rates]
+
+
+COMPONENT = Attitude

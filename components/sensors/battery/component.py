@@ -1,0 +1,46 @@
+from pydantic import Field
+
+from morsec.component import ComponentProperties, DataField, Sensor
+
+CHARGING_ZONE = "Charging"
+
+
+class Battery(Sensor):
+    """Remaining charge of the robot's battery, informative only (an empty battery does not stop the
+    robot). The charge falls by `DischargingRate` percent per simulated second, whatever the robot does;
+    while the sensor is inside a zone of type `Charging` it rises at the same rate, up to 100 %."""
+
+    short_descr = "Battery charge, discharging with time, charging in Charging zones"
+    builder_name = "Battery"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        DischargingRate: float = Field(0.05, ge=0.0, description="discharge (and charge) rate, percent per "
+                                       "simulated second")
+
+    data = (
+        DataField("charge", 100.0, "float", "battery charge, percent (starts full)"),
+        DataField("status", "Charged", "string", "Charged, Charging or Discharging"),
+    )
+
+    def start(self):
+        self.previous_time = float(self.sim.clock.now())
+
+    def default_action(self):
+        now = float(self.local_data["timestamp"])
+        dt, self.previous_time = now - self.previous_time, now
+        rate = self.properties.DischargingRate
+        charge = float(self.local_data["charge"])
+        if self.sim.zones_at(self.position(), CHARGING_ZONE):
+            charge += dt * rate
+            status = "Charging"
+            if charge >= 100.0:
+                charge, status = 100.0, "Charged"
+        else:
+            charge = max(0.0, charge - dt * rate)
+            status = "Discharging"
+        self.local_data["charge"] = float(charge)
+        self.local_data["status"] = status
+
+
+COMPONENT = Battery

@@ -1,0 +1,71 @@
+import mujoco
+from pydantic import Field
+
+from morsec.component import ComponentProperties, DataField, Sensor
+
+
+class Collision(Sensor):
+    """Whether the sensor's robot touches something, and what: MuJoCo's contacts between any geometry of
+    the robot and anything else. The ground plane(s) of the environment are not counted (a ground robot
+    always stands on them); other environment geometry (walls, crates) is named after its geom. With
+    `only_objects_with_property` only robots and objects carrying that property count."""
+
+    short_descr = "Contacts of the robot with other objects"
+    builder_name = "Collision"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        only_objects_with_property: str = Field(
+            "", description="count only robots and objects carrying this property (empty: everything)")
+
+    data = (
+        DataField("collision", False, "bool", "true when the robot touches something"),
+        DataField("objects", "", "string", "names of what the robot touches, comma-separated, sorted"),
+    )
+
+    def start(self):
+        m = self.sim.model
+        self.own_root = int(m.body_rootid[self.body_id])
+        self.scene_objects = {obj.body_id: obj for obj in self.sim.objects}
+
+    def default_action(self):
+        m, d = self.sim.model, self.sim.data
+        wanted = self.properties.only_objects_with_property
+        names = set()
+        n = d.ncon
+        if n:
+            contacts = d.contact
+            g1, g2 = contacts.geom1[:n], contacts.geom2[:n]
+            excluded = getattr(contacts, "exclude", None)
+            for i in range(n):
+                if excluded is not None and excluded[i]:
+                    continue
+                a, b = int(g1[i]), int(g2[i])
+                ra, rb = m.body_rootid[m.geom_bodyid[a]], m.body_rootid[m.geom_bodyid[b]]
+                if ra == self.own_root and rb != self.own_root:
+                    other, root = b, int(rb)
+                elif rb == self.own_root and ra != self.own_root:
+                    other, root = a, int(ra)
+                else:
+                    continue
+                name = self._name(other, root, wanted)
+                if name:
+                    names.add(name)
+        self.local_data["collision"] = bool(names)
+        self.local_data["objects"] = ",".join(sorted(names))
+
+    def _name(self, geom: int, root: int, wanted: str) -> str | None:
+        obj = self.scene_objects.get(root)
+        if obj is not None:
+            return obj.name if (not wanted or obj.has(wanted)) else None
+        if wanted:
+            return None
+        m = self.sim.model
+        if root == 0:  # environment geometry
+            if m.geom_type[geom] == mujoco.mjtGeom.mjGEOM_PLANE:
+                return None
+            return mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, geom) or "world"
+        return mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, root) or f"body {root}"
+
+
+COMPONENT = Collision

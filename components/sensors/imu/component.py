@@ -1,0 +1,127 @@
+import datetime
+import logging
+from functools import lru_cache
+from typing import Literal
+
+import mujoco
+import numpy as np
+from pydantic import Field
+
+from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.geometry import matrix_to_quat
+
+log = logging.getLogger("morsec.sensors.imu")
+
+RELOCATE_M = 1000.0  # the geomagnetic field is recomputed when the sensor has moved this far
+
+
+class IMU(Sensor):
+    """Inertial measurement unit: body rates, specific force (gravity included: +9.81 on z at rest)
+    and the Earth's magnetic field, all in the IMU's own frame.
+
+    With physics (`ComputationMode` Velocity, the default for robots that move under physics), the
+    rates and the specific force come from MuJoCo's `gyro` and `accelerometer` sensors declared on the
+    IMU's site (`sensor.xml.j2`): the acceleration of the site itself, so an IMU mounted off the robot's
+    centre feels the centripetal and tangential terms. In Position mode (robots moved kinematically,
+    fixed robots) they are finite differences of the sensor's pose over the nominal period, as MORSE."""
+
+    short_descr = "Angular velocity, linear acceleration (with gravity) and magnetic field, IMU frame"
+    builder_name = "IMU"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
+            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
+            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+
+    data = (
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the IMU's x, y, z axes, rad/s"),
+        DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3<float>",
+                  "specific force along the IMU's x, y, z axes, gravity included (+9.81 on z at rest), m/s^2"),
+        DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3<float>",
+                  "Earth's magnetic field (World Magnetic Model) in the IMU frame, nT; zero when the "
+                  "environment has no geodetic properties"),
+    )
+
+    def start(self):
+        m = self.sim.model
+        mode = self.properties.ComputationMode
+        self.mode = ("Velocity" if self.robot.free else "Position") if mode == "Automatic" else mode
+        self.gyro = _sensor_adr(m, f"{self.name}/gyro")
+        self.accel = _sensor_adr(m, f"{self.name}/accelerometer")
+        self.gravity = np.array(m.opt.gravity, dtype=float)  # (0, 0, -g)
+        self.previous_pos = self.position().copy()
+        self.previous_rot = self.rotation().copy()
+        self.previous_vel = np.zeros(3)
+        self.field_at = None  # scene position where the field was last computed
+        self.field = np.zeros(3)  # field in the scene frame, nT
+        try:
+            self.geo = self.sim.geo
+        except ValueError:
+            self.geo = None
+            log.info("%s: no geodetic environment properties: magnetic_field stays zero", self.name)
+
+    def default_action(self):
+        rot = self.rotation()
+        if self.mode == "Velocity":
+            data = self.sim.data.sensordata
+            rates = data[self.gyro:self.gyro + 3].copy()
+            accel = data[self.accel:self.accel + 3].copy()
+            self.previous_pos, self.previous_rot = self.position().copy(), rot.copy()
+        else:
+            rates, accel = self._differences(rot)
+        self.local_data["angular_velocity"] = [float(v) for v in rates]
+        self.local_data["linear_acceleration"] = [float(v) for v in accel]
+        self.local_data["magnetic_field"] = [float(v) for v in rot.T @ self._field()]
+
+    def _differences(self, rot):
+        f = self.frequency
+        pos = self.position().copy()
+        vel = (pos - self.previous_pos) * f
+        accel_world = (vel - self.previous_vel) * f
+        rates = np.zeros(3)
+        mujoco.mju_quat2Vel(rates, matrix_to_quat(self.previous_rot.T @ rot), 1.0 / f)
+        self.previous_pos, self.previous_rot, self.previous_vel = pos, rot.copy(), vel
+        return rates, rot.T @ (accel_world - self.gravity)
+
+    def _field(self):
+        if self.geo is None:
+            return self.field
+        pos = self.position()
+        if self.field_at is None or np.linalg.norm(pos - self.field_at) > RELOCATE_M:
+            lat, lon, alt = self.geo.to_geodetic(pos)
+            north, east, down = wmm_ned(lat, lon, alt, decimal_year(datetime.date.today()))
+            self.field = self.geo.from_enu([east, north, -down])
+            self.field_at = pos.copy()
+        return self.field
+
+
+def _sensor_adr(model, name: str) -> int:
+    sid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SENSOR, name)
+    if sid < 0:
+        raise ValueError(f"scene.xml has no MuJoCo sensor {name!r}: rebuild the scene")
+    return int(model.sensor_adr[sid])
+
+
+def decimal_year(day: datetime.date) -> float:
+    start = datetime.date(day.year, 1, 1)
+    length = (datetime.date(day.year + 1, 1, 1) - start).days
+    return day.year + (day - start).days / length
+
+
+@lru_cache(maxsize=8)
+def _wmm(release: str):
+    from pygeomag import GeoMag
+    return GeoMag(coefficients_file=f"wmm/WMM_{release}.COF")
+
+
+def wmm_ned(lat: float, lon: float, alt_m: float, year: float) -> tuple[float, float, float]:
+    """World Magnetic Model (pygeomag): (north, east, down) field at a geodetic point, nT. The release
+    whose epoch precedes `year` is used (WMM2010 ... WMM2025), extrapolated outside its five years."""
+    release = "2025" if year >= 2025 else "2020" if year >= 2020 else "2015v2" if year >= 2015 else "2010"
+    r = _wmm(release).calculate(glat=lat, glon=lon, alt=alt_m / 1000.0, time=year,
+                                allow_date_outside_lifespan=True)
+    return float(r.x), float(r.y), float(r.z)
+
+
+COMPONENT = IMU

@@ -1,0 +1,77 @@
+import datetime
+from functools import lru_cache
+
+import numpy as np
+from pydantic import Field
+
+from morsec.component import ComponentProperties, DataField, Sensor
+
+RELOCATE_M = 1000.0  # the field is recomputed when the sensor has moved this far
+# the sensor frame (x forward, y left, z up) relabelled as the `ned` modifier relabels the scene:
+# x' = y, y' = x, z' = -z; with the scene's orientation that is north, east, down
+SENSOR_TO_NED = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])
+
+
+class Magnetometer(Sensor):
+    """The Earth's magnetic field at the sensor, from the World Magnetic Model (WMM2010 to WMM2025,
+    through the `pygeomag` package), in nT. With the sensor in the scene's orientation (and the
+    environment's `angle_against_north` at 0) x is the northern, y the eastern and z the downward
+    component, as MORSE's; the reading turns with the sensor (it is the field in the sensor's frame,
+    its axes relabelled as the `ned` modifier relabels the scene's: x' = y, y' = x, z' = -z).
+
+    Needs the environment properties `longitude`, `latitude` and `altitude`: without them the
+    simulation does not start."""
+
+    short_descr = "Earth's magnetic field (World Magnetic Model), nT"
+    builder_name = "Magnetometer"
+    frequency = 60.0
+
+    class Properties(ComponentProperties):
+        date: float = Field(0.0, ge=0.0, description="date of the field as a decimal year (2025.5 is early "
+                            "July 2025); 0: the day the simulation starts")
+
+    data = (
+        DataField("x", 0.0, "float", "northern component of the magnetic field, nT"),
+        DataField("y", 0.0, "float", "eastern component of the magnetic field, nT"),
+        DataField("z", 0.0, "float", "downward component of the magnetic field, nT"),
+    )
+
+    def start(self):
+        self.geo = self.sim.geo  # ValueError (the simulation does not start) without geodetic properties
+        self.year = self.properties.date or decimal_year(datetime.date.today())
+        self.field_at = None
+        self.field = np.zeros(3)  # scene frame, nT
+
+    def default_action(self):
+        pos = self.position()
+        if self.field_at is None or np.linalg.norm(pos - self.field_at) > RELOCATE_M:
+            lat, lon, alt = self.geo.to_geodetic(pos)
+            north, east, down = wmm_ned(lat, lon, alt, self.year)
+            self.field = self.geo.from_enu([east, north, -down])
+            self.field_at = pos.copy()
+        x, y, z = SENSOR_TO_NED @ (self.rotation().T @ self.field)
+        self.local_data.update(x=float(x), y=float(y), z=float(z))
+
+
+def decimal_year(day: datetime.date) -> float:
+    start = datetime.date(day.year, 1, 1)
+    length = (datetime.date(day.year + 1, 1, 1) - start).days
+    return day.year + (day - start).days / length
+
+
+@lru_cache(maxsize=8)
+def _wmm(release: str):
+    from pygeomag import GeoMag
+    return GeoMag(coefficients_file=f"wmm/WMM_{release}.COF")
+
+
+def wmm_ned(lat: float, lon: float, alt_m: float, year: float) -> tuple[float, float, float]:
+    """World Magnetic Model (pygeomag): (north, east, down) field at a geodetic point, nT. The release
+    whose epoch precedes `year` is used (WMM2010 ... WMM2025), extrapolated outside its five years."""
+    release = "2025" if year >= 2025 else "2020" if year >= 2020 else "2015v2" if year >= 2015 else "2010"
+    r = _wmm(release).calculate(glat=lat, glon=lon, alt=alt_m / 1000.0, time=year,
+                                allow_date_outside_lifespan=True)
+    return float(r.x), float(r.y), float(r.z)
+
+
+COMPONENT = Magnetometer
