@@ -22,6 +22,7 @@ from morsec.scene.naming import join
 from morsec.compiler.urdf import Link
 
 SENSOR_WIDTH_MM = 32.0
+STAT_EXTENT = 10.0  # MuJoCo's model size statistic, fixed (it scales clip planes, haze, default views)
 # base velocity servo gains per kg of robot: stiff enough to override wheel/ground friction when
 # turning (MORSE's motion actuators are kinematic); implicitfast integrates them stably
 SERVO_GAIN_PER_KG = 200.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
@@ -99,7 +100,8 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         model_name=_model_name(scene), morsec_version=__version__,
         timestep=1.0 / (loop_frequency * substeps), gravity=scene.environment.gravity,
         offwidth=1920, offheight=1080,
-        camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy},
+        camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy, "clip": cam.clip},
+        extent=STAT_EXTENT,
         environment=env_xml, environment_assets=env_assets,
         robots=robots, objects=objects, zones=zones, servos=servos,
         actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
@@ -137,8 +139,9 @@ SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2")
 
 def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]) -> dict[str, list]:
     """A component folder may add MJCF <actuator> entries (actuator.xml.j2: e.g. wheel motors) and MuJoCo
-    <sensor> entries (sensor.xml.j2). Context: name (fqn), robot, robot_type, joints (the robot's MJCF
-    joint names by URDF name), links (MJCF body names by URDF link name), properties, component."""
+    <sensor> entries (sensor.xml.j2). Context: name (fqn), robot, robot_type, robot_class (the robot's
+    catalogue class: its class attributes, e.g. wheel joints and radius), robot_properties, joints (the
+    robot's MJCF joint names by URDF name), links (MJCF body names by URDF link name), properties, component."""
     devices = cat.devices()
     out: dict[str, list] = {t: [] for t in SECTION_TEMPLATES}
 
@@ -152,6 +155,8 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
             path = component_template(cat, cls, template)
             if path:
                 out[template].append(render(env, path, name=fqn, robot=robot.name, robot_type=robot.type,
+                                            robot_class=cat.get("robots", robot.type),
+                                            robot_properties=robot.properties,
                                             joints=joints, links=links, properties=comp.properties,
                                             component=comp))
         for child in comp.components:

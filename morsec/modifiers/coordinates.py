@@ -3,6 +3,7 @@ origin) to another convention, actuator inputs converted back. Positions are the
 
 from __future__ import annotations
 
+import logging
 import math
 
 from pydantic import Field
@@ -11,6 +12,18 @@ from morsec.geometry import normalize_angle
 from morsec.modifiers.base import Modifier, ModifierParams
 
 FEET_PER_METRE = 3.2808399
+log = logging.getLogger("morsec.modifiers")
+
+
+def _lacks(modifier: Modifier, data: dict, keys: tuple[str, ...] = ("x", "y", "z")) -> bool:
+    """True (and a warning, once) when the data has not the fields this modifier converts (a GPS at its
+    raw level has no x, y, z): the data then goes out unchanged, as MORSE's, instead of not at all."""
+    missing = [k for k in keys if k not in data]
+    if missing and not getattr(modifier, "_warned", False):
+        modifier._warned = True
+        log.warning("modifier %s: the data has no field %s; left unchanged", type(modifier).__name__,
+                    ", ".join(missing))
+    return bool(missing)
 
 
 def _xyz(data: dict):
@@ -25,6 +38,8 @@ class ToNED(Modifier):
     """x' = y (north), y' = x (east), z' = -z (down)."""
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         x, y, z = _xyz(data)
         _set(data, y, x, -z)
 
@@ -36,6 +51,8 @@ class AnglesToNED(Modifier):
     """Heading from north, clockwise: yaw' = pi/2 - yaw; pitch' = -pitch; roll unchanged."""
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data, ("yaw", "pitch")):
+            return
         data["yaw"] = normalize_angle(math.pi / 2 - float(data["yaw"]))
         data["pitch"] = -float(data["pitch"])
 
@@ -57,6 +74,8 @@ class ToUTM(Modifier):
     sign = 1.0
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         p = self.params
         x, y, z = _xyz(data)
         _set(data, x + self.sign * p.x_offset, y + self.sign * p.y_offset, z + self.sign * p.z_offset)
@@ -71,6 +90,8 @@ class ToECEF(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         _set(data, *self.sim.geo.to_ecef(_xyz(data)))
 
 
@@ -78,6 +99,8 @@ class FromECEF(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         _set(data, *self.sim.geo.from_ecef(_xyz(data)))
 
 
@@ -86,6 +109,8 @@ class ToGeodetic(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         lat, lon, alt = self.sim.geo.to_geodetic(_xyz(data))
         _set(data, lon, lat, alt)
 
@@ -94,6 +119,8 @@ class FromGeodetic(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         lon, lat, alt = _xyz(data)
         _set(data, *self.sim.geo.from_geodetic(lat, lon, alt))
 
@@ -104,6 +131,8 @@ class ToGeocentric(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         ex, ey, ez = self.sim.geo.to_ecef(_xyz(data))
         r = math.sqrt(ex * ex + ey * ey + ez * ez)
         _set(data, math.degrees(math.atan2(ey, ex)), math.degrees(math.asin(ez / r)), r)
@@ -113,6 +142,8 @@ class FromGeocentric(Modifier):
     needs_geo = True
 
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         lon_deg, lat_deg, radius = _xyz(data)
         lon, lat = math.radians(lon_deg), math.radians(lat_deg)
         ecef = (radius * math.cos(lat) * math.cos(lon), radius * math.cos(lat) * math.sin(lon), radius * math.sin(lat))
@@ -121,11 +152,15 @@ class FromGeocentric(Modifier):
 
 class ToFeet(Modifier):
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         x, y, z = _xyz(data)
         _set(data, x * FEET_PER_METRE, y * FEET_PER_METRE, z * FEET_PER_METRE)
 
 
 class FromFeet(Modifier):
     def modify(self, data: dict) -> None:
+        if _lacks(self, data):
+            return
         x, y, z = _xyz(data)
         _set(data, x / FEET_PER_METRE, y / FEET_PER_METRE, z / FEET_PER_METRE)

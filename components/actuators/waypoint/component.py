@@ -38,6 +38,7 @@ RADAR_FAN = math.radians(90.0)  # each fan spans 0 .. 90 degrees on its side of 
 RADAR_STEP = math.radians(1.5)
 CORRIDOR_MARGIN = 0.25  # m on each side of the robot
 STOP_GAP = 0.35  # m between the robot's front and an obstacle: no forward motion below this
+NEAR = 0.3  # m beyond the robot's footprint: an obstacle this close keeps the robot going round it
 VISUAL_GROUP, HIDDEN_GROUP = 2, 5
 RAY_MASK = np.array([0 if g in (VISUAL_GROUP, HIDDEN_GROUP) else 1 for g in range(mujoco.mjNGROUP)], dtype=np.uint8)
 
@@ -106,6 +107,7 @@ class Waypoint(Actuator):
             front = max(front, float(local[:, 0].max()))
             half_width = max(half_width, float(np.abs(local[:, 1]).max()))
         self._front, self._half_width = front, half_width
+        self._radius = math.hypot(front, half_width)
         self._cutoff = math.hypot(RADAR_RANGE, half_width + CORRIDOR_MARGIN)  # farthest hit that can matter
         # ray fans, left (positive angles) then right, in the robot's yaw frame
         left = np.arange(RADAR_STEP / 2, RADAR_FAN + 1e-9, RADAR_STEP)
@@ -131,9 +133,9 @@ class Waypoint(Actuator):
         planar = math.hypot(delta[0], delta[1])
         return (float(np.linalg.norm(delta)) if self.properties.FreeZ else planar), planar
 
-    def radars(self, goal_distance: float) -> tuple[float, float]:
+    def radars(self, goal_distance: float) -> tuple[float, float, bool]:
         """Distances ahead (m, from the actuator) of the nearest obstacle in the robot's corridor on the left
-        and on the right (inf: none)."""
+        and on the right (inf: none), and whether an obstacle is close by on either side."""
         m, d = self.sim.model, self.sim.data
         _, rot = self.robot.pose()
         yaw = math.atan2(rot[1, 0], rot[0, 0])
@@ -155,8 +157,9 @@ class Waypoint(Actuator):
             & (self._dist < goal_distance)
         left = threat & (self._angles > 0)
         right = threat & (self._angles < 0)
+        near = hit & (self._dist < self._radius + NEAR) & (self._dist < goal_distance)
         return (float(ahead[left].min()) if left.any() else math.inf,
-                float(ahead[right].min()) if right.any() else math.inf)
+                float(ahead[right].min()) if right.any() else math.inf, bool(near.any()))
 
     # ------------------------------------------------------------------ the tick
     def default_action(self):
@@ -201,9 +204,12 @@ class Waypoint(Actuator):
         if abs(error) >= TURN_ON_THE_SPOT:
             v = 0.0
 
-        if self.properties.ObstacleAvoidance and v != 0:
-            left, right = self.radars(distance)
+        if self.properties.ObstacleAvoidance:
+            left, right, near = self.radars(distance)
             nearest = min(left, right)
+            if near or nearest < math.inf:
+                # going round an obstacle: keep moving along it even when the goal is far off the heading
+                v = min(speed, distance * self.frequency)
             if nearest < math.inf:
                 w = turn if right <= left else -turn  # away from the nearer side
                 if nearest - self._front < STOP_GAP:

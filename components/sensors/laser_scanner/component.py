@@ -161,7 +161,9 @@ class LaserScanner(Sensor):
     def default_action(self) -> None:
         dirs, dist, geomid, laser_range = self.cast()
         hit = (dist >= 0.0) & (dist <= laser_range)
-        self.local_data["point_list"] = dirs * np.where(hit, dist, 0.0)[:, None]
+        points = dirs * np.where(hit, dist, 0.0)[:, None]
+        points += 0.0  # a missed ray's negative direction components give -0.0: MORSE writes plain 0.0
+        self.local_data["point_list"] = points
         self.local_data["range_list"] = np.where(hit, dist, laser_range)
         if self._rssi:
             self.local_data["remission_list"] = self._remission[np.where(hit, geomid, -1)]
