@@ -613,3 +613,40 @@ def test_plain_python_runs(tmp_path):
     result = run_python(script, "--", "run", "--duration", "0.1", "--time-strategy", "fixed_step")
     assert result.returncode == 0, result.stderr
     assert "robot.pose" in result.stdout and "EXITING SIMULATION" in result.stdout
+
+
+def test_recording_from_python_code():
+    from morsec.builder.script import recording
+    from morsec.scene.loader import validate_scene
+    with recording() as session:
+        from morsec.builder import ATRV, Cube, Environment, Pose
+        rover = ATRV()
+        rover.append(Pose())
+        box = Cube()
+        box.scale = 0.5
+        env = Environment('empty')
+    scene = validate_scene(*session.scene_data(), session.catalogue)
+    assert [r.name for r in scene.robots] == ["rover"]
+    assert [(o.name, o.size) for o in scene.objects] == [("box", [1.0, 1.0, 1.0])]
+    del rover, box, env
+
+
+def test_basic_mesh_sizes(tmp_path):
+    path = write(tmp_path, """
+        from morse.builder import *
+        unit = Cube()
+        flat = Cube('slab')
+        flat.scale = (2.0, 1.0, 0.05)
+        ball = Sphere()
+        ball.size = [0.3, 0.3, 0.3]
+        prop = PassiveObject('box')
+        big_prop = PassiveObject('props/basic', 'box')
+        big_prop.scale = (2.0, 2.0, 2.0)
+        env = Environment('empty')
+    """)
+    objects = {o.name: o for o in load(path).objects}
+    assert objects["unit"].size == [2.0, 2.0, 2.0]  # a Blender cube spans -1..1
+    assert objects["slab"].size == [4.0, 2.0, 0.1]
+    assert objects["ball"].size == [0.3, 0.3, 0.3]  # size: full extent, as in the IR
+    assert objects["prop"].size == [0.5, 0.5, 0.5]  # a catalogue prop keeps its default size
+    assert objects["big_prop"].size == [1.0, 1.0, 1.0]  # ... and scale multiplies it

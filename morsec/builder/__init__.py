@@ -47,7 +47,7 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
     return classes
 
 
-def _robot_init(self, name=None):
+def _robot_init(self, name=None, debug=True):
     Robot.__init__(self, "", name)
 
 

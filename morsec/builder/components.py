@@ -710,9 +710,17 @@ class FakeRobot(Robot):
 
 # ---------------------------------------------------------------- passive objects
 
+def _default_object_size() -> list[float]:
+    return list(models.ObjectSpec.model_fields["size"].default_factory())
+
+
 class _Object(AbstractComponent):
     _kind = "object"
     _unit_mesh: ClassVar[bool] = False  # True: a Blender primitive, 2 m wide at scale 1 (±1)
+
+    def _base_size(self) -> list[float]:
+        """The full size at scale 1: 2 m for a Blender primitive, else the catalogue prop's default."""
+        return [2.0, 2.0, 2.0] if self._unit_mesh else _default_object_size()
 
     def _start(self, register: bool) -> None:
         super()._start(register)
@@ -725,6 +733,7 @@ class _Object(AbstractComponent):
     @scale.setter
     def scale(self, xyz) -> None:
         """MORSE's Blender scale: a basic mesh is ±1, so its full size is 2 * scale."""
+        self._raw.pop("size", None)
         self._scale = _vector(xyz)
         self._mark("size")
 
@@ -733,7 +742,7 @@ class _Object(AbstractComponent):
         """Full extent along x, y, z, m (morsec's `size`)."""
         if "size" in self._raw:
             return list(self._raw["size"])
-        return [2.0 * s for s in self.scale]
+        return [b * s for b, s in zip(self._base_size(), self.scale)]
 
     @size.setter
     def size(self, xyz) -> None:
@@ -767,7 +776,8 @@ class _Object(AbstractComponent):
         out = copy.deepcopy(self._raw)
         if self._scale is not None:
             if isinstance(self._scale, list):
-                out["size"] = [2.0 * s if isinstance(s, (int, float)) else s for s in self._scale]
+                out["size"] = [b * s if isinstance(s, (int, float)) else s
+                               for b, s in zip(self._base_size(), self._scale)] + self._scale[3:]
             else:
                 out["size"] = self._scale
         elif self._unit_mesh and "size" not in out:
@@ -835,7 +845,6 @@ class PassiveObject(_Object):
                 found = self._lookup(candidate)
                 if found:
                     self._type_name = found
-                    self._unit_mesh = found in {self._lookup(n) for n in ("Cube", "Cylinder", "Sphere")}
                     return
         searched = asset_search_path(self._session.script)
         found_file = find_asset(str(filename), searched)

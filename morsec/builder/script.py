@@ -75,6 +75,23 @@ def record_script(path: Path, catalogue: Catalogue | None = None) -> Recording:
 
 
 @contextmanager
+def recording(catalogue: Catalogue | None = None):
+    """Record builder calls made from Python code (a notebook, a test) instead of a script file:
+
+        with recording() as session:
+            robot = ATRV(); robot.append(Pose()); env = Environment('empty')
+        scene = validate_scene(*session.scene_data(), session.catalogue)
+    """
+    session = Session(catalogue or load_catalogue(), None)
+    _session.push(session)
+    try:
+        with morse_import_hook():
+            yield session
+    finally:
+        _session.pop(session)
+
+
+@contextmanager
 def _running(session: Session, path: Path):
     """The session is current, `morse.builder` imports resolve to morsec, the script's folder is on sys.path."""
     saved_argv, saved_path = sys.argv, list(sys.path)
@@ -115,6 +132,8 @@ def script_error(err: BaseException, path: Path) -> SceneError:
     elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] == "morse":
         message = (f"{type(err).__name__}: {err}: morsec provides morse.builder only (MORSE's core, middleware "
                    "and testing modules have no morsec equivalent)")
+    elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] in ("bpy", "bge", "mathutils"):
+        message = f"{type(err).__name__}: {err}: morsec runs without Blender; its Python modules do not exist"
     else:
         text = str(err).strip().splitlines()
         message = f"{type(err).__name__}: {text[0]}" if text else type(err).__name__

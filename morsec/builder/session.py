@@ -55,7 +55,9 @@ def current(create: bool = True) -> "Session | None":
         main_file = getattr(main, "__file__", None)
         script = Path(main_file) if main_file else None
         folder = script.parent if script else Path.cwd()
-        _standalone = Session(load_catalogue(folder), script, standalone=True)
+        # `python mysim.py` builds at create(); elsewhere (a console, a notebook) the session only records
+        runs_a_script = script is not None and script.suffix == ".py"
+        _standalone = Session(load_catalogue(folder), script, standalone=runs_a_script)
     return _standalone
 
 

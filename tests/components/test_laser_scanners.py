@@ -243,14 +243,16 @@ def test_sick_ld_mrs_layers(tmp_path):
 # ---------------------------------------------------------------- the robot carrying the laser
 
 def test_the_carrying_robot_is_not_seen_but_others_are(tmp_path):
-    # the laser sits inside the ATRV's chassis box, at the height of its front wheels' axle: without the
-    # exclusion, every ray would hit the chassis from inside, the +-90 deg rays the wheels
+    # `sick` sits inside the ATRV's chassis box (without the exclusion every ray would hit it from inside,
+    # at 0.13 to 0.28 m); `low` sits under the chassis between the front wheels, which are other bodies
+    # than the robot's root (without the exclusion its +-90 deg rays would hit them at 0.29 m)
     scene = """environment: {name: empty, time: {strategy: fixed_step}}
 robots:
   - name: r
     type: atrv
     components:
       - {name: sick, type: sick, translate: [0.32, 0.0, 0.1]}
+      - {name: low, type: sick, translate: [0.32, 0.0, -0.02]}
   - name: other
     type: atrv
     translate: [0.0, 3.0, 0.0]
@@ -259,8 +261,11 @@ objects:
 """
     with simulate(scene, tmp_path) as sim:
         sim.run_for(0.5)
-        data = sim.data("r.sick")
+        data, low = sim.data("r.sick"), sim.data("r.low")
         other, _ = sim.body_pose("other")
+        groups = sim.sim.model.geom_group.copy()
+    assert not np.any(groups == 5)  # the robot's geoms are back in their groups after the scan
+    assert np.asarray(low["range_list"])[0] == 30.0 and np.asarray(low["range_list"]).min() > 1.0
     ranges = np.asarray(data["range_list"])
     assert ranges.min() > 1.0  # nothing of its own robot (chassis 0.45 m, wheels 0.43 m away)
     assert ranges[90] == pytest.approx(2.5, abs=0.01)
@@ -290,15 +295,20 @@ def test_rssi_level_adds_remission(tmp_path):
 def test_default_frequency(cid, expected, tmp_path):
     with simulate(holder_scene(f"{{name: laser, type: {cid}}}"), tmp_path) as sim:
         calls = count_ticks(sim, "r.laser")
+        sim.run_for(1.0)  # the first scan is at the first frame
+        before = len(calls)
         sim.run_for(1.0)
-    assert len(calls) == expected
+    assert len(calls) - before == expected  # scans in one simulated second
+    assert np.diff(calls[1:]) == pytest.approx(np.full(len(calls) - 2, 1.0 / expected), abs=1e-9)  # evenly
 
 
 def test_frequency_can_be_set(tmp_path):
     with simulate(holder_scene("{name: laser, type: sick, frequency: 20}"), tmp_path) as sim:
         calls = count_ticks(sim, "r.laser")
         sim.run_for(1.0)
-    assert len(calls) == 20
+        before = len(calls)
+        sim.run_for(1.0)
+    assert len(calls) - before == 20
 
 
 def test_laser_range_changes_at_run_time(tmp_path):
@@ -339,7 +349,7 @@ def test_infrared_is_short_range(tmp_path):
         ranges = np.asarray(sim.data("r.ir")["range_list"])
     a = azimuths(21, 20.0)
     assert ranges == pytest.approx(1.5 / np.cos(a), abs=0.01)
-    with simulate(holder_scene("{name: ir, type: infrared}", wall_x(2.5)), tmp_path / "far") as sim:
+    with simulate(holder_scene("{name: ir, type: infrared}", wall_x(2.5)), tmp_path, name="far") as sim:
         sim.step(1)
         assert np.all(np.asarray(sim.data("r.ir")["range_list"]) == 2.0)
 
@@ -356,11 +366,14 @@ def test_velodyne_fan_and_rotation(tmp_path):
         sim.step(30)  # 30 more scans at 60 Hz
         later = sim.data("r.velo")
     elevation = np.radians(-27.75 + 0.5 * np.arange(64))
-    down = elevation < 0
+    with np.errstate(divide="ignore"):
+        floor = np.where(elevation < 0, h / np.sin(-elevation), np.inf)
+    down = floor <= 50.0  # the floor within laser_range: rays 0 to 50 (elevation -2.75 deg: 41.7 m)
+    assert down.sum() == 51
     for data, scans_before in ((first, 0), (later, 30)):
         ranges, points = np.asarray(data["range_list"]), np.asarray(data["point_list"])
         assert len(ranges) == 64
-        assert ranges[down] == pytest.approx(h / np.sin(-elevation[down]), abs=0.01)
+        assert ranges[down] == pytest.approx(floor[down], abs=0.01)
         assert np.all(ranges[~down] == 50.0)
         assert np.all(points[~down] == 0.0)
         azimuth = math.atan2(points[0, 1], points[0, 0])

@@ -38,6 +38,7 @@ RADAR_FAN = math.radians(90.0)  # each fan spans 0 .. 90 degrees on its side of 
 RADAR_STEP = math.radians(1.5)
 CORRIDOR_MARGIN = 0.25  # m on each side of the robot
 STOP_GAP = 0.35  # m between the robot's front and an obstacle: no forward motion below this
+BYPASS = 0.5  # m driven forward after the last obstacle seen ahead before turning on the spot again
 NEAR = 0.3  # m beyond the robot's footprint: an obstacle this close keeps the robot going round it
 VISUAL_GROUP, HIDDEN_GROUP = 2, 5
 RAY_MASK = np.array([0 if g in (VISUAL_GROUP, HIDDEN_GROUP) else 1 for g in range(mujoco.mjNGROUP)], dtype=np.uint8)
@@ -82,6 +83,7 @@ class Waypoint(Actuator):
         self._previous_speed = 0.0
         self._arrived_at = self._goal_key()  # goal for which the robot arrived: do nothing until it changes
         self._target = None
+        self._bypass = 0.0  # m still to go forward round an obstacle, whatever the heading error
         self._warned: set[str] = set()
         self._setup_radars()
 
@@ -207,13 +209,16 @@ class Waypoint(Actuator):
         if self.properties.ObstacleAvoidance:
             left, right, near = self.radars(distance)
             nearest = min(left, right)
-            if near or nearest < math.inf:
+            if nearest < math.inf:
+                self._bypass = BYPASS
+            if near or self._bypass > 0:
                 # going round an obstacle: keep moving along it even when the goal is far off the heading
                 v = min(speed, distance * self.frequency)
             if nearest < math.inf:
                 w = turn if right <= left else -turn  # away from the nearer side
                 if nearest - self._front < STOP_GAP:
                     v = 0.0
+            self._bypass = max(0.0, self._bypass - v / self.frequency)
 
         if self.properties.FreeZ:
             local = rot.T @ (goal - self.position())

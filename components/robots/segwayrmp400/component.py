@@ -22,8 +22,8 @@ class SegwayRMP400(Robot):
     wheel_track: ClassVar[float] = 0.62
     left_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_left_joint", "wheel_rear_left_joint")
     right_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_right_joint", "wheel_rear_right_joint")
-    wheel_kv: ClassVar[float] = 300.0  # wheel velocity servo gain, N m per rad/s
-    wheel_max_torque: ClassVar[float] = 120.0  # N m per wheel
+    wheel_kv: ClassVar[float] = 300.0  # x
+    wheel_max_torque: ClassVar[float] = 120.0  # x
 
     class Properties(RobotProperties):
         GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "

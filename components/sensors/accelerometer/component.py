@@ -14,10 +14,10 @@ class Accelerometer(Sensor):
     """Distance travelled since the previous tick, velocity, acceleration (**without** gravity) and
     angular acceleration of the sensor, in the sensor's frame.
 
-    With physics (`ComputationMode` Velocity) the values come from MuJoCo's `velocimeter`,
-    `accelerometer` and `frameangacc` sensors on the accelerometer's site (`sensor.xml.j2`), gravity
-    taken out; in Position mode they are finite differences of the pose over the measured time since
-    the previous tick, as MORSE."""
+    With physics (`ComputationMode` Velocity) the velocities are MuJoCo's velocity of the sensor's frame
+    and the accelerations their change since the previous tick, over the elapsed simulated time (as
+    MORSE differentiates the physics velocities); in Position mode the velocities are finite differences
+    of the pose too."""
 
     short_descr = "Distance, velocity, acceleration (no gravity) and angular acceleration, sensor frame"
     builder_name = "Accelerometer"
@@ -38,48 +38,37 @@ class Accelerometer(Sensor):
     )
 
     def start(self):
-        m = self.sim.model
         mode = self.properties.ComputationMode
         self.mode = ("Velocity" if self.robot.free else "Position") if mode == "Automatic" else mode
-        self.adr = {key: _sensor_adr(m, f"{self.name}/{key}") for key in ("velocimeter", "accelerometer", "angacc")}
-        self.gravity = np.array(m.opt.gravity, dtype=float)
-        self.previous_time = float(self.sim.clock.now())
+        self.previous_time = self.sim.clock.elapsed  # simulated seconds (exact, unlike epoch timestamps)
         self.previous_pos = self.position().copy()
         self.previous_rot = self.rotation().copy()
-        self.previous_vel = np.zeros(3)  # world frame
-        self.previous_rates = np.zeros(3)  # sensor frame
+        if self.mode == "Velocity":
+            linear, angular = self.velocity(local=False)
+            self.previous_vel, self.previous_rates = linear.copy(), angular.copy()
+        else:
+            self.previous_vel, self.previous_rates = np.zeros(3), np.zeros(3)  # world frame
 
     def default_action(self):
-        now = float(self.local_data["timestamp"])
+        now = self.sim.clock.elapsed
         dt = now - self.previous_time
         if dt < 1e-9:
             return
         pos, rot = self.position().copy(), self.rotation().copy()
-        self.local_data["distance"] = float(np.linalg.norm(pos - self.previous_pos))
         if self.mode == "Velocity":
-            data = self.sim.data.sensordata
-            velocity = data[self.adr["velocimeter"]:self.adr["velocimeter"] + 3].copy()
-            accel = data[self.adr["accelerometer"]:self.adr["accelerometer"] + 3] + rot.T @ self.gravity
-            angular = rot.T @ data[self.adr["angacc"]:self.adr["angacc"] + 3]
+            linear, angular = self.velocity(local=False)
+            vel, rates = linear.copy(), angular.copy()
         else:
-            world_vel = (pos - self.previous_pos) / dt
-            rates = np.zeros(3)
-            mujoco.mju_quat2Vel(rates, matrix_to_quat(self.previous_rot.T @ rot), dt)
-            velocity = rot.T @ world_vel
-            accel = rot.T @ (world_vel - self.previous_vel) / dt
-            angular = (rates - self.previous_rates) / dt
-            self.previous_vel, self.previous_rates = world_vel, rates
+            vel = (pos - self.previous_pos) / dt
+            local_rates = np.zeros(3)
+            mujoco.mju_quat2Vel(local_rates, matrix_to_quat(self.previous_rot.T @ rot), dt)
+            rates = rot @ local_rates
+        self.local_data["distance"] = float(np.linalg.norm(pos - self.previous_pos))
+        self.local_data["velocity"] = [float(v) for v in rot.T @ vel]
+        self.local_data["acceleration"] = [float(v) for v in rot.T @ (vel - self.previous_vel) / dt]
+        self.local_data["angular_acceleration"] = [float(v) for v in rot.T @ (rates - self.previous_rates) / dt]
         self.previous_time, self.previous_pos, self.previous_rot = now, pos, rot
-        self.local_data["velocity"] = [float(v) for v in velocity]
-        self.local_data["acceleration"] = [float(v) for v in accel]
-        self.local_data["angular_acceleration"] = [float(v) for v in angular]
-
-
-def _sensor_adr(model, name: str) -> int:
-    sid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SENSOR, name)
-    if sid < 0:
-        raise ValueError(f"scene.xml has no MuJoCo sensor {name!r}: rebuild the scene")
-    return int(model.sensor_adr[sid])
+        self.previous_vel, self.previous_rates = vel, rates
 
 
 COMPONENT = Accelerometer

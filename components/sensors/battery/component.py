@@ -24,10 +24,10 @@ class Battery(Sensor):
     )
 
     def start(self):
-        self.previous_time = float(self.sim.clock.now())
+        self.previous_time = self.sim.clock.elapsed  # simulated seconds (exact, unlike epoch timestamps)
 
     def default_action(self):
-        now = float(self.local_data["timestamp"])
+        now = self.sim.clock.elapsed
         dt, self.previous_time = now - self.previous_time, now
         rate = self.properties.DischargingRate
         charge = float(self.local_data["charge"])

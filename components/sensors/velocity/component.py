@@ -34,7 +34,7 @@ class Velocity(Sensor):
     def start(self):
         mode = self.properties.ComputationMode
         self.mode = ("Velocity" if self.robot.free else "Position") if mode == "Automatic" else mode
-        self.previous_time = float(self.sim.clock.now())
+        self.previous_time = self.sim.clock.elapsed  # simulated seconds (exact, unlike epoch timestamps)
         self.previous_pos = self.position().copy()
         self.previous_rot = self.rotation().copy()
 
@@ -44,7 +44,7 @@ class Velocity(Sensor):
             linear, angular = self.velocity(local=True)
             world = rot @ linear
         else:
-            now = float(self.local_data["timestamp"])
+            now = self.sim.clock.elapsed
             dt = now - self.previous_time
             if dt < 1e-9:
                 return

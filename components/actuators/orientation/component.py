@@ -1,0 +1,70 @@
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from pydantic import Field
+
+from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.geometry import euler_to_quat, normalize_angle, quat_to_matrix
+
+
+def _no_default(schema: dict) -> None:
+    schema.pop("default", None)  # inf is not JSON: the description says it
+
+
+class Orientation(Actuator):
+    """Turns the robot so that this actuator's frame has the commanded yaw, pitch and roll (MORSE's
+    Orientation): instantly with the default infinite `speed`, else at no more than `speed` rad/s about
+    each angle, each stopping within `tolerance` of its goal."""
+
+    short_descr = "Set the orientation of the robot"
+    builder_name = "Orientation"
+    frequency = 60.0
+    base_servo = True
+
+    class Properties(ComponentProperties):
+        speed: float = Field(math.inf, gt=0, allow_inf_nan=True, json_schema_extra=_no_default,
+                             description="rotation speed, rad/s; default inf: the rotation is instantaneous")
+        tolerance: float = Field(0.02, ge=0, description="angle, rad, under which a goal angle is reached")
+        ControlType: Literal["Velocity", "Position"] = "Velocity"
+
+    data = (
+        DataField("yaw", 0.0, "float", "rotation about z, rad (default: the initial orientation)"),
+        DataField("pitch", 0.0, "float", "rotation about y, rad"),
+        DataField("roll", 0.0, "float", "rotation about x, rad"),
+    )
+
+    def start(self):
+        roll, pitch, yaw = self.euler()
+        self.local_data.update(yaw=yaw, pitch=pitch, roll=roll)
+
+    def default_action(self):
+        d = self.local_data
+        goal = (float(d["roll"]), float(d["pitch"]), float(d["yaw"]))
+        if math.isinf(self.properties.speed):
+            target = quat_to_matrix(euler_to_quat(*goal))
+            current = self.rotation()
+            angle = math.acos(max(-1.0, min(1.0, (float(np.trace(current.T @ target)) - 1) / 2)))
+            if angle > 1e-9:  # set_pose stops the robot: only when there is something to turn
+                self.robot.place_frame(self.body_id, self.position().copy(), target)
+            return
+        roll, pitch, yaw = self.euler()
+        rates = []
+        for want, have in zip(goal, (roll, pitch, yaw)):
+            diff = normalize_angle(want - have)
+            if abs(diff) < self.properties.tolerance:
+                rates.append(0.0)
+            else:
+                rates.append(math.copysign(min(self.properties.speed, abs(diff) * self.frequency), diff))
+        # Euler angle rates -> angular velocity (world), R = Rz(yaw) Ry(pitch) Rx(roll)
+        cz, sz, cy, sy = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
+        x_axis = np.array([cz * cy, sz * cy, -sy])  # Rz Ry ex
+        y_axis = np.array([-sz, cz, 0.0])  # Rz ey
+        world = rates[0] * x_axis + rates[1] * y_axis + rates[2] * np.array([0.0, 0.0, 1.0])
+        _, base_rot = self.robot.pose()
+        self.robot.apply_speed(self.properties.ControlType, [0.0, 0.0, 0.0], base_rot.T @ world, self.frequency)
+
+
+COMPONENT = Orientation

@@ -1,0 +1,131 @@
+"""Motion sensors (accelerometer, velocity, attitude, gyroscope) on a robot whose motion is known: a
+floating helicopter driven by motion_vw (v forward, w about z: a circle of radius v / w), and fixed
+robots at known orientations."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from morsec.testing import simulate
+
+V, W = 1.0, 0.5
+MODES = ("Velocity", "Position")
+
+
+@pytest.fixture(scope="module")
+def circling(tmp_path_factory):
+    """Data of every motion sensor, in both computation modes, on a helicopter circling at (V, W)."""
+    parts = []
+    for mode in MODES:
+        props = f"properties: {{ComputationMode: {mode}}}"
+        parts += [f"      - {{name: acc_{mode}, type: accelerometer, {props}}}",
+                  f"      - {{name: vel_{mode}, type: velocity, {props}}}",
+                  f"      - {{name: att_{mode}, type: attitude, {props}}}"]
+    text = f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: heli
+    type: rmax
+    translate: [0.0, 0.0, 5.0]
+    components:
+{chr(10).join(parts)}
+      - {{name: gyro, type: gyroscope}}
+      - {{name: motion, type: motion_vw}}
+"""
+    with simulate(text, tmp_path_factory.mktemp("circling")) as h:
+        h.run_for(0.5)
+        at_rest = {name: h.data(name) for name in h.sim.by_name}
+        h.command("heli.motion", v=V, w=W)
+        h.run_for(3.0)
+        moving = {name: h.data(name) for name in h.sim.by_name}
+        yaw = h.yaw("heli")
+    return at_rest, moving, yaw
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_accelerometer_excludes_gravity_and_feels_the_turn(circling, mode):
+    at_rest, moving, _ = circling
+    rest = at_rest[f"heli.acc_{mode}"]
+    assert list(rest) == ["timestamp", "distance", "velocity", "acceleration", "angular_acceleration"]
+    assert rest["acceleration"] == pytest.approx([0.0, 0.0, 0.0], abs=0.02)  # gravity not included
+    assert rest["distance"] == pytest.approx(0.0, abs=1e-6)
+    data = moving[f"heli.acc_{mode}"]
+    assert data["distance"] == pytest.approx(V / 60, rel=0.01)  # per tick at 60 Hz
+    assert data["velocity"] == pytest.approx([V, 0.0, 0.0], abs=0.01)
+    # uniform circular motion: centripetal acceleration v w towards the centre, on the left (+y)
+    assert data["acceleration"] == pytest.approx([0.0, V * W, 0.0], abs=0.03)
+    assert data["angular_acceleration"] == pytest.approx([0.0, 0.0, 0.0], abs=0.05)
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_velocity_in_sensor_and_world_frames(circling, mode):
+    _, moving, yaw = circling
+    data = moving[f"heli.vel_{mode}"]
+    assert list(data) == ["timestamp", "linear_velocity", "angular_velocity", "world_linear_velocity"]
+    assert data["linear_velocity"] == pytest.approx([V, 0.0, 0.0], abs=0.01)
+    assert data["angular_velocity"] == pytest.approx([0.0, 0.0, W], abs=0.01)
+    # the position mode differentiates over the last tick: the heading half a tick back
+    heading = yaw - (W / 120 if mode == "Position" else 0.0)
+    assert data["world_linear_velocity"] == pytest.approx([V * math.cos(heading), V * math.sin(heading), 0.0],
+                                                          abs=0.01)
+
+
+@pytest.mark.parametrize("mode", MODES)
+def test_attitude_angles_and_rates(circling, mode):
+    _, moving, yaw = circling
+    data = moving[f"heli.att_{mode}"]
+    assert list(data) == ["timestamp", "rotation", "angular_velocity"]
+    roll, pitch, att_yaw = data["rotation"]
+    assert (roll, pitch) == pytest.approx((0.0, 0.0), abs=5e-3)  # the servos tilt it a little
+    assert att_yaw == pytest.approx(yaw, abs=1e-9)
+    assert data["angular_velocity"] == pytest.approx([0.0, 0.0, W], abs=0.01)
+    # 3.0 s at W rad/s, from yaw 0 (the servo takes a few frames to reach W)
+    assert att_yaw == pytest.approx(math.remainder(3.0 * W, 2 * math.pi), abs=0.03)
+
+
+def test_gyroscope_gives_angles_of_the_sensor(circling, tmp_path):
+    _, moving, yaw = circling
+    assert moving["heli.gyro"]["yaw"] == pytest.approx(yaw, abs=1e-9)
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    rotate: [0.1, -0.2, 0.3]
+    components:
+      - {name: gyro, type: gyroscope}
+      - {name: turned, type: gyroscope, rotate: [0.0, 0.0, 1.0]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        gyro, turned = h.data("r.gyro"), h.data("r.turned")
+    assert list(gyro) == ["timestamp", "yaw", "pitch", "roll"]
+    assert (gyro["roll"], gyro["pitch"], gyro["yaw"]) == pytest.approx((0.1, -0.2, 0.3), abs=1e-8)
+    # the sensor's own frame counts: turned by 1 rad about the robot's z axis (then read in world XYZ angles)
+    assert turned["yaw"] > gyro["yaw"] + 0.9
+
+
+def test_attitude_yaw_against_north(tmp_path):
+    """With angle_against_north = 20 deg the scene's y axis is 20 deg east of north; a sensor facing
+    the scene's y axis (yaw +90 deg) has a bearing of 20 deg: UseAngleAgainstNorth reads -20 deg."""
+    text = """
+environment:
+  name: empty
+  time: {strategy: fixed_step, relative: true}
+  properties: {longitude: 1.4333, latitude: 43.6, altitude: 135.0, angle_against_north: 20.0}
+robots:
+  - name: r
+    type: fake_robot
+    rotate: [0.0, 0.0, 1.5707963267948966]
+    components:
+      - {name: north, type: attitude, properties: {UseAngleAgainstNorth: true}}
+      - {name: scene, type: attitude}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        north, scene = h.data("r.north"), h.data("r.scene")
+    assert north["rotation"][2] == pytest.approx(math.radians(-20.0), abs=1e-9)
+    assert scene["rotation"][2] == pytest.approx(math.pi / 2, abs=1e-9)
+    assert north["angular_velocity"] == [0.0, 0.0, 0.0]

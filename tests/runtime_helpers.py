@@ -1,0 +1,383 @@
+"""Shared helpers for the runtime tests: run `morsec run` as a user would (a subprocess), on ports that
+are free, and talk to it over raw sockets.
+
+    with Morsec(scene_file(tmp_path, robot()), tmp_path) as sim:   # waits for SCENE INITIALIZED
+        client = sim.client()
+        assert client.call("simulation", "list_robots") == ("SUCCESS", ["robot"])
+        sim.stream("robot.pose").line()                              # one JSON line of the pose stream
+
+Every process is stopped (SIGTERM, then SIGKILL) when the block ends, whatever happens in it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import os
+import queue
+import random
+import signal
+import socket
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+MORSEC = Path(sys.executable).with_name("morsec")
+READY = "SCENE INITIALIZED"
+HOST = "127.0.0.1"
+START_TIMEOUT = 90.0  # building and starting a scene on a loaded machine
+
+# ------------------------------------------------------------------------------------------- ports
+# Listening ports are picked below the Linux ephemeral range (32768+), where client sockets of other
+# processes live, and checked free by binding them.
+_PORT_LOW, _PORT_HIGH = 20000, 32000
+_taken: set[int] = set()  # handed out by this process already
+_rng = random.Random(os.getpid() ^ int(time.time() * 1000))
+
+
+def port_free(port: int, host: str = HOST) -> bool:
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    try:
+        sock.bind((host, port))
+    except OSError:
+        return False
+    finally:
+        sock.close()
+    return True
+
+
+def free_ports(count: int = 1) -> int:
+    """The first of `count` consecutive free ports, none handed out before by this process."""
+    for _ in range(2000):
+        base = _rng.randrange(_PORT_LOW, _PORT_HIGH - count)
+        block = range(base, base + count)
+        if any(p in _taken for p in block):
+            continue
+        if all(port_free(p) for p in block):
+            _taken.update(block)
+            return base
+    raise RuntimeError("no block of free ports found")
+
+
+def free_port() -> int:
+    return free_ports(1)
+
+
+def occupy(port: int, host: str = HOST) -> socket.socket:
+    """A listening socket holding `port` (close it to free the port)."""
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.bind((host, port))
+    sock.listen(1)
+    return sock
+
+
+# ------------------------------------------------------------------------------------------- scenes
+def pose_sensor(name: str = "pose", **extra) -> dict:
+    """A pose sensor at ground level on an ATRV (its origin is 0.1 m up), with a socket stream."""
+    return {"name": name, "type": "pose", "translate": [0.0, 0.0, -0.1], "streams": ["socket"], **extra}
+
+
+def robot(name: str = "robot", *components: dict, **extra) -> dict:
+    """An ATRV with pose and motion_vw (socket stream and services) unless components are given."""
+    if not components:
+        components = (pose_sensor(), {"name": "motion", "type": "motion_vw", "streams": ["socket"],
+                                      "services": ["socket"]})
+    return {"name": name, "type": "atrv", "components": list(components), **extra}
+
+
+def scene(*robots: dict, strategy: str = "fixed_step", frequency: float = 60.0, objects: list | None = None,
+          environment: dict | None = None) -> dict:
+    env = {"name": "empty", "time": {"strategy": strategy, "frequency": frequency}}
+    for key, value in (environment or {}).items():
+        if key == "time":
+            env["time"].update(value)
+        else:
+            env[key] = value
+    out: dict[str, Any] = {"environment": env, "robots": list(robots) or [robot()]}
+    if objects:
+        out["objects"] = objects
+    return out
+
+
+def scene_file(folder: Path, content: dict | None = None, name: str = "scene") -> Path:
+    path = Path(folder) / f"{name}.yaml"
+    path.write_text(yaml.safe_dump(content if content is not None else scene(), sort_keys=False))
+    return path
+
+
+# ------------------------------------------------------------------------------------------- clients
+class LineSocket:
+    """A blocking TCP client reading newline-terminated lines with a timeout."""
+
+    def __init__(self, port: int, host: str = HOST, timeout: float = 10.0):
+        self.sock = socket.create_connection((host, port), timeout=timeout)
+        self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.timeout = timeout
+        self.buffer = b""
+
+    def send(self, data: bytes | str) -> None:
+        self.sock.sendall(data.encode() if isinstance(data, str) else data)
+
+    def raw_line(self, timeout: float | None = None) -> bytes:
+        """The next line, with its newline."""
+        deadline = time.monotonic() + (timeout if timeout is not None else self.timeout)
+        while b"\n" not in self.buffer:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutError(f"no complete line within the timeout (have {self.buffer[:200]!r})")
+            self.sock.settimeout(remaining)
+            try:
+                chunk = self.sock.recv(65536)
+            except socket.timeout:
+                continue
+            if not chunk:
+                raise ConnectionError(f"connection closed by the server (have {self.buffer[:200]!r})")
+            self.buffer += chunk
+        line, _, self.buffer = self.buffer.partition(b"\n")
+        return line + b"\n"
+
+    def line(self, timeout: float | None = None) -> str:
+        return self.raw_line(timeout).decode("utf-8").rstrip("\n")
+
+    def json(self, timeout: float | None = None) -> Any:
+        return json.loads(self.raw_line(timeout))
+
+    def drain(self) -> None:
+        """Forget what is buffered or waiting on the socket now."""
+        self.buffer = b""
+        self.sock.setblocking(False)
+        try:
+            while self.sock.recv(65536):
+                pass
+        except (BlockingIOError, InterruptedError):
+            pass
+        finally:
+            self.sock.setblocking(True)
+            self.sock.settimeout(self.timeout)
+
+    def close(self) -> None:
+        with contextlib.suppress(OSError):
+            self.sock.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+class ServiceClient(LineSocket):
+    """The socket service protocol: `id component service [json]` -> `id STATUS[ json]`."""
+
+    def __init__(self, port: int, host: str = HOST, timeout: float = 15.0):
+        super().__init__(port, host, timeout)
+        self.next_id = 0
+
+    def new_id(self) -> str:
+        self.next_id += 1
+        return f"r{self.next_id}"
+
+    def send_request(self, component: str, service: str, *args, request_id: str | None = None) -> str:
+        request_id = request_id or self.new_id()
+        params = f" {json.dumps(list(args))}" if args else ""
+        self.send(f"{request_id} {component} {service}{params}\n")
+        return request_id
+
+    def response(self, request_id: str | None = None, timeout: float | None = None) -> tuple[str, str, Any]:
+        """(id, status, result) of the next response (of `request_id`: others are skipped)."""
+        while True:
+            line = self.line(timeout)
+            rid, status, result = parse_response(line)
+            if request_id is None or rid == request_id:
+                return rid, status, result
+
+    def call(self, component: str, service: str, *args, timeout: float | None = None) -> tuple[str, Any]:
+        """(status, result) of a request, waiting for its answer."""
+        request_id = self.send_request(component, service, *args)
+        _, status, result = self.response(request_id, timeout)
+        return status, result
+
+    def ok(self, component: str, service: str, *args, timeout: float | None = None) -> Any:
+        status, result = self.call(component, service, *args, timeout=timeout)
+        assert status == "SUCCESS", f"{component} {service} {list(args)}: {status} {result!r}"
+        return result
+
+
+def parse_response(line: str) -> tuple[str, str, Any]:
+    parts = line.split(" ", 2)
+    assert len(parts) >= 2, f"not a response line: {line!r}"
+    result = json.loads(parts[2]) if len(parts) == 3 else None
+    return parts[0], parts[1], result
+
+
+# ------------------------------------------------------------------------------------------- process
+class Morsec:
+    """A `morsec run` subprocess on free ports (a given service port and stream port base)."""
+
+    def __init__(self, scene_path: Path, workdir: Path, *, args: tuple | list = (), service_port: int | None = None,
+                 port_base: int | None = None, strategy: str | None = None, cwd: Path | None = None,
+                 build: Path | None = None):
+        self.scene_path = Path(scene_path)
+        self.workdir = Path(workdir)
+        self.service_port = service_port or free_port()
+        self.port_base = port_base if port_base is not None else free_ports(20)
+        self.cwd = Path(cwd) if cwd else self.workdir
+        self.build = Path(build) if build else self.workdir / f"build-{self.scene_path.stem}"
+        command = [str(MORSEC), "run", str(self.scene_path), "-o", str(self.build),
+                   "--service-port", str(self.service_port), "--port-base", str(self.port_base)]
+        if strategy:
+            command += ["--time-strategy", strategy]
+        self.command = command + [str(a) for a in args]
+        self.proc: subprocess.Popen | None = None
+        self.stdout: list[str] = []
+        self.stderr: list[str] = []
+        self._lines: queue.Queue = queue.Queue()
+        self.streams: dict[str, tuple[str, int]] = {}  # fqn -> (direction, port) of socket streams
+        self.text_files: dict[str, Path] = {}
+        self.sync_port: int | None = None
+        self.announced_service_port: int | None = None
+
+    # ---- lifecycle
+    def start(self) -> "Morsec":
+        env = dict(os.environ, PYTHONUNBUFFERED="1")
+        self.proc = subprocess.Popen(self.command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                     text=True, env=env, start_new_session=True)
+        threading.Thread(target=self._pump, args=(self.proc.stdout, self.stdout, True), daemon=True).start()
+        threading.Thread(target=self._pump, args=(self.proc.stderr, self.stderr, False), daemon=True).start()
+        return self
+
+    def _pump(self, pipe, sink: list[str], forward: bool) -> None:
+        for line in pipe:
+            sink.append(line.rstrip("\n"))
+            if forward:
+                self._lines.put(line.rstrip("\n"))
+        if forward:
+            self._lines.put(None)
+
+    def wait_ready(self, timeout: float = START_TIMEOUT) -> "Morsec":
+        deadline = time.monotonic() + timeout
+        while True:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                self.stop()
+                raise TimeoutError(f"morsec did not start within {timeout}s: {self.output()}")
+            try:
+                line = self._lines.get(timeout=remaining)
+            except queue.Empty:
+                continue
+            if line is None:
+                self.proc.wait(10)
+                raise RuntimeError(f"morsec exited ({self.proc.returncode}) before {READY}: {self.output()}")
+            if line.strip() == READY:
+                break
+        # the table is written in the same write as the ready line
+        while True:
+            try:
+                line = self._lines.get(timeout=0.3)
+            except queue.Empty:
+                break
+            if line is None or not line.startswith("  "):
+                break
+            self._parse_table_line(line)
+        assert self.announced_service_port == self.service_port, self.output()
+        return self
+
+    def _parse_table_line(self, line: str) -> None:
+        parts = line.split()
+        if parts[0] == "services":
+            self.announced_service_port = int(parts[1].rsplit(":", 1)[1])
+        elif parts[0] == "lockstep":
+            self.sync_port = int(parts[1].rsplit(":", 1)[1])
+        elif len(parts) >= 4 and parts[2] == "socket":
+            self.streams[parts[0]] = (parts[1], int(parts[3].rsplit(":", 1)[1]))
+        elif len(parts) >= 4 and parts[2] == "text":
+            self.text_files[parts[0]] = Path(parts[3])
+
+    def __enter__(self) -> "Morsec":
+        self.start()
+        try:
+            return self.wait_ready()
+        except BaseException:
+            self.stop()
+            raise
+
+    def __exit__(self, *exc) -> None:
+        self.stop()
+
+    @property
+    def pid(self) -> int:
+        return self.proc.pid
+
+    def alive(self) -> bool:
+        return self.proc is not None and self.proc.poll() is None
+
+    def signal(self, sig: int) -> None:
+        self.proc.send_signal(sig)
+
+    def wait(self, timeout: float = 30.0) -> int:
+        return self.proc.wait(timeout)
+
+    def stop(self, timeout: float = 15.0) -> int | None:
+        """SIGTERM (a clean shutdown), then SIGKILL; the exit code."""
+        if self.proc is None:
+            return None
+        if self.proc.poll() is None:
+            with contextlib.suppress(ProcessLookupError):
+                self.proc.send_signal(signal.SIGTERM)
+            try:
+                self.proc.wait(timeout)
+            except subprocess.TimeoutExpired:
+                with contextlib.suppress(ProcessLookupError):
+                    self.proc.kill()
+                self.proc.wait(10)
+        return self.proc.returncode
+
+    def output(self) -> str:
+        time.sleep(0.05)
+        return "\nstdout:\n" + "\n".join(self.stdout[-40:]) + "\nstderr:\n" + "\n".join(self.stderr[-40:])
+
+    # ---- clients
+    def client(self, timeout: float = 15.0) -> ServiceClient:
+        return ServiceClient(self.service_port, timeout=timeout)
+
+    def port(self, fqn: str) -> int:
+        return self.streams[fqn][1]
+
+    def stream(self, fqn: str, timeout: float = 10.0) -> LineSocket:
+        return LineSocket(self.port(fqn), timeout=timeout)
+
+    def request(self, line: str, timeout: float = 15.0) -> str:
+        """One raw request line on a fresh connection, its raw response line."""
+        with LineSocket(self.service_port, timeout=timeout) as sock:
+            sock.send(line if line.endswith("\n") else line + "\n")
+            return sock.line()
+
+    def fd_count(self) -> int:
+        return len(os.listdir(f"/proc/{self.pid}/fd"))
+
+
+def run_to_exit(command: list[str], cwd: Path, timeout: float = 120.0) -> subprocess.CompletedProcess:
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+
+
+# ------------------------------------------------------------------------------------------- geometry
+def wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+
+def wait_until(predicate, timeout: float = 10.0, interval: float = 0.01, message: str = "condition"):
+    deadline = time.monotonic() + timeout
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"{message} not met within {timeout}s")
+        time.sleep(interval)
