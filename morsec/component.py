@@ -198,7 +198,9 @@ class Device(Component):
         import mujoco
         import numpy as np
         res = np.zeros(6)
-        mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_BODY, self.body_id, res,
+        # XBODY: the body's own frame (xpos, xmat); BODY would be its inertial frame, which MuJoCo puts
+        # elsewhere for a massless component body
+        mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_XBODY, self.body_id, res,
                                  1 if local else 0)
         return res[3:], res[:3]
 

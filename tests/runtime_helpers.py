@@ -221,17 +221,22 @@ def parse_response(line: str) -> tuple[str, str, Any]:
 class Morsec:
     """A `morsec run` subprocess on free ports (a given service port and stream port base)."""
 
-    def __init__(self, scene_path: Path, workdir: Path, *, args: tuple | list = (), service_port: int | None = None,
+    def __init__(self, scene_path: Path, workdir: Path, *, args: tuple | list = (), service_port: int | str | None = None,
                  port_base: int | None = None, strategy: str | None = None, cwd: Path | None = None,
-                 build: Path | None = None):
+                 build: Path | None = None, host: str = HOST):
+        """service_port: a port, None (a free one is picked) or "auto" (no --service-port: 4000, 4001 ...)."""
         self.scene_path = Path(scene_path)
         self.workdir = Path(workdir)
-        self.service_port = service_port or free_port()
+        self.host = host
         self.port_base = port_base if port_base is not None else free_ports(20)
         self.cwd = Path(cwd) if cwd else self.workdir
         self.build = Path(build) if build else self.workdir / f"build-{self.scene_path.stem}"
-        command = [str(MORSEC), "run", str(self.scene_path), "-o", str(self.build),
-                   "--service-port", str(self.service_port), "--port-base", str(self.port_base)]
+        command = [str(MORSEC), "run", str(self.scene_path), "-o", str(self.build), "--port-base", str(self.port_base)]
+        if service_port == "auto":
+            self.service_port = None  # known from the table
+        else:
+            self.service_port = service_port or free_port()
+            command += ["--service-port", str(self.service_port)]
         if strategy:
             command += ["--time-strategy", strategy]
         self.command = command + [str(a) for a in args]
@@ -240,7 +245,7 @@ class Morsec:
         self.stderr: list[str] = []
         self._lines: queue.Queue = queue.Queue()
         self.streams: dict[str, tuple[str, int]] = {}  # fqn -> (direction, port) of socket streams
-        self.text_files: dict[str, Path] = {}
+        self.text_files: list[tuple[str, Path]] = []  # (fqn, file) of text streams
         self.sync_port: int | None = None
         self.announced_service_port: int | None = None
 
@@ -286,6 +291,8 @@ class Morsec:
             if line is None or not line.startswith("  "):
                 break
             self._parse_table_line(line)
+        if self.service_port is None:
+            self.service_port = self.announced_service_port
         assert self.announced_service_port == self.service_port, self.output()
         return self
 
@@ -298,7 +305,7 @@ class Morsec:
         elif len(parts) >= 4 and parts[2] == "socket":
             self.streams[parts[0]] = (parts[1], int(parts[3].rsplit(":", 1)[1]))
         elif len(parts) >= 4 and parts[2] == "text":
-            self.text_files[parts[0]] = Path(parts[3])
+            self.text_files.append((parts[0], Path(parts[3])))
 
     def __enter__(self) -> "Morsec":
         self.start()
@@ -345,22 +352,36 @@ class Morsec:
 
     # ---- clients
     def client(self, timeout: float = 15.0) -> ServiceClient:
-        return ServiceClient(self.service_port, timeout=timeout)
+        return ServiceClient(self.service_port, self.host, timeout=timeout)
 
     def port(self, fqn: str) -> int:
         return self.streams[fqn][1]
 
     def stream(self, fqn: str, timeout: float = 10.0) -> LineSocket:
-        return LineSocket(self.port(fqn), timeout=timeout)
+        return LineSocket(self.port(fqn), self.host, timeout=timeout)
 
     def request(self, line: str, timeout: float = 15.0) -> str:
         """One raw request line on a fresh connection, its raw response line."""
-        with LineSocket(self.service_port, timeout=timeout) as sock:
+        with LineSocket(self.service_port, self.host, timeout=timeout) as sock:
             sock.send(line if line.endswith("\n") else line + "\n")
             return sock.line()
 
     def fd_count(self) -> int:
         return len(os.listdir(f"/proc/{self.pid}/fd"))
+
+
+def start_all(*sims: Morsec) -> tuple[Morsec, ...]:
+    """Start several simulations at once (their start-ups overlap) and wait until all are ready."""
+    try:
+        for sim in sims:
+            sim.start()
+        for sim in sims:
+            sim.wait_ready()
+    except BaseException:
+        for sim in sims:
+            sim.stop()
+        raise
+    return sims
 
 
 def run_to_exit(command: list[str], cwd: Path, timeout: float = 120.0) -> subprocess.CompletedProcess:

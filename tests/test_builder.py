@@ -650,3 +650,30 @@ def test_basic_mesh_sizes(tmp_path):
     assert objects["ball"].size == [0.3, 0.3, 0.3]  # size: full extent, as in the IR
     assert objects["prop"].size == [0.5, 0.5, 0.5]  # a catalogue prop keeps its default size
     assert objects["big_prop"].size == [1.0, 1.0, 1.0]  # ... and scale multiplies it
+
+
+def test_overlays_interfaces_and_bindings(tmp_path):
+    path = write(tmp_path, """
+        from morse.builder import *
+        robot = ATRV()
+        motion = MotionVW()
+        motion.add_overlay('socket', 'mysim.overlays.Speed', speed=2)
+        motion.configure_overlay('socket', 'mysim.overlays.Other')
+        motion.add_interface('socket', port=61000)
+        robot.append(motion)
+        pose = Pose()
+        pose.add_stream(['morse.middleware.text_datastream.TextDatastreamManager', 'write', 'x/y'])
+        pose.alter(classpath='morse.modifiers.pose_noise.PoseNoiseModifier', pos_std=0.2)
+        pose.configure_modifier('NED')
+        robot.append(pose)
+        env = Environment('empty')
+    """)
+    motion, pose = load(path).robots[0].components
+    assert [o.model_dump() for o in motion.overlays] == [
+        {"middleware": "socket", "overlay": "mysim.overlays.Speed", "speed": 2},
+        {"middleware": "socket", "overlay": "mysim.overlays.Other"}]
+    assert motion.interfaces == ["socket"] and motion.services == ["socket"]
+    assert [(s.middleware, s.port) for s in motion.streams] == [("socket", 61000)]
+    assert [(s.middleware, s.classpath, s.method, s.path) for s in pose.streams] == [
+        ("text", "morse.middleware.text_datastream.TextDatastreamManager", "write", "x/y")]
+    assert [m.model_dump() for m in pose.modifiers] == [{"name": "posenoise", "pos_std": 0.2}, {"name": "ned"}]

@@ -18,13 +18,13 @@ import pytest
 pymorse = pytest.importorskip("pymorse")
 
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
-from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, wait_until  # noqa: E402
+from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, start_all, wait_until  # noqa: E402
 
 patch_pymorse()
 
 from pymorse import Morse, MorseServiceFailed, MorseServicePreempted  # noqa: E402
 
-STRATEGIES = ["best_effort", "fixed_step"]
+STRATEGIES = ["fixed_step", "best_effort"]  # fixed_step first: its server, spinning flat out, quits first
 DT = 1.0 / 60
 
 
@@ -36,12 +36,25 @@ def pymorse_scene(strategy: str) -> dict:
                  robot("x_001", pose_sensor(), translate=[0.0, -4.0, 0.0]), strategy=strategy)
 
 
-@pytest.fixture(scope="module", params=STRATEGIES)
-def server(request, tmp_path_factory):
-    tmp = tmp_path_factory.mktemp(f"pymorse-{request.param}")
-    with Morsec(scene_file(tmp, pymorse_scene(request.param)), tmp) as sim:
-        sim.strategy = request.param
-        yield sim
+@pytest.fixture(scope="module")
+def servers(tmp_path_factory):
+    """One simulation per time strategy, started together."""
+    sims = {}
+    for strategy in STRATEGIES:
+        tmp = tmp_path_factory.mktemp(f"pymorse-{strategy}")
+        sims[strategy] = Morsec(scene_file(tmp, pymorse_scene(strategy)), tmp)
+        sims[strategy].strategy = strategy
+    start_all(*sims.values())
+    try:
+        yield sims
+    finally:
+        for sim in sims.values():
+            sim.stop()
+
+
+@pytest.fixture(params=STRATEGIES)
+def server(request, servers):
+    return servers[request.param]
 
 
 @pytest.fixture

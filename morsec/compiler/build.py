@@ -20,6 +20,7 @@ import mujoco
 
 from morsec import __version__
 from morsec.catalogue import Catalogue, level_class, load_catalogue
+from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import middleware_config
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
@@ -48,6 +49,7 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
     files: dict[str, str] = {}
     trees = {}
     robots = []
+    assets = Assets()
     for r, robot in enumerate(scene.robots):
         cls = cat.get("robots", robot.type)
         xacro_file = cls.folder / cls.xacro
@@ -59,14 +61,19 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
             urdf = expand_xacro(xacro_file, {"name": _NAME_PLACEHOLDER})
             urdf = urdf.replace(_NAME_PLACEHOLDER, xml_escape(robot.name, {'"': "&quot;"}))
             trees[robot.name] = read_urdf(urdf, f"{xacro_file}")
+            for link in trees[robot.name].walk():
+                for g in link.geoms:
+                    if g.kind == "mesh":
+                        g.mesh = assets.mesh(cls, g.mesh, g.size)
         except SceneError as err:
             raise _at_scene(err, scene, ("robots", r, "type")) from None
         path = f"robots/{robot.name}.urdf"
         files[path] = urdf
         robots.append({"name": robot.name, "type": robot.type, "class": class_ref(cls), "urdf": path,
                        "free": not (robot.physics_type == "static" or cls.static)})
-    xml = render_scene(scene, cat, trees, loop_frequency)
-    check_mjcf(xml, scene)
+    xml = render_scene(scene, cat, trees, loop_frequency, assets)
+    check_mjcf(xml, scene, assets.files)
+    files.update(assets.files)
     files["scene.xml"] = xml
     files["middleware.json"] = dump(middleware_config(scene, components))
     ir = scene.model_dump(mode="json")
@@ -128,14 +135,12 @@ def loop_rate(scene, components: list[dict]) -> float:
 _MJ_ELEMENT = re.compile(r"Element name '([^']*)', id \d+, line (\d+)")
 
 
-def check_mjcf(xml: str, scene) -> None:
+def check_mjcf(xml: str, scene, assets: dict[str, bytes] | None = None) -> None:
     """Compile with MuJoCo; a rejection is re-anchored to the scene entry that produced the element."""
-    warnings: list[str] = []
     try:
-        model = mujoco.MjModel.from_xml_string(xml)
+        mujoco.MjModel.from_xml_string(xml, assets=assets or {})
     except ValueError as err:
         raise _anchor(str(err), xml, scene) from None
-    del model, warnings
 
 
 def _anchor(message: str, xml: str, scene) -> SceneError:
@@ -210,10 +215,13 @@ def write_build(files: dict[str, str], out_dir: Path) -> None:
         raise SceneError(f"{out_dir}: cannot create the build folder: {err.strerror or err}") from None
     old = None
     try:
-        for name, text in files.items():
+        for name, content in files.items():
             target = tmp / name
             target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_text(text, encoding="utf-8")
+            if isinstance(content, bytes):
+                target.write_bytes(content)
+            else:
+                target.write_text(content, encoding="utf-8")
         if out_dir.exists():
             old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
             out_dir.rename(old / "build")
@@ -235,5 +243,5 @@ def dump(data) -> str:
     return json.dumps(data, indent=2, sort_keys=True) + "\n"
 
 
-def sha256(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+def sha256(content: str | bytes) -> str:
+    return hashlib.sha256(content if isinstance(content, bytes) else content.encode("utf-8")).hexdigest()

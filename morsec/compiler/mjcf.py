@@ -19,6 +19,7 @@ from morsec.errors import SceneError
 from morsec.geometry import euler_to_quat, fmt, fmt_vec
 from morsec.resources import data_dir
 from morsec.scene.naming import join
+from morsec.compiler.assets import Assets, asset_dir
 from morsec.compiler.urdf import Link
 
 SENSOR_WIDTH_MM = 32.0
@@ -75,13 +76,16 @@ class RobotBody:
     collides: bool
 
 
-def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequency: float) -> str:
+def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequency: float,
+                 assets: Assets) -> str:
     env = template_env(cat)
     environment = cat.get("environments", scene.environment.name)
-    env_context = {"scene": scene, "environment": scene.environment}
+    env_context = {"scene": scene, "environment": scene.environment, "asset_dir": asset_dir(environment),
+                   "id": environment.id}
     env_xml = render(env, component_template(cat, environment, environment.template), **env_context)
-    assets_template = component_template(cat, environment, "assets.xml.j2")
-    env_assets = render(env, assets_template, **env_context) if assets_template else ""
+    asset_xml = [_class_assets(environment, cat, env, assets, env_context)]
+    for cls in _used_classes(scene, cat):
+        asset_xml.append(_class_assets(cls, cat, env, assets, {"asset_dir": asset_dir(cls), "id": cls.id}))
 
     robots = [render(env, "mjcf/robot.xml.j2", robot=_robot_body(r, cat, env, robot_trees[r.name]))
               for r in scene.robots]
@@ -102,7 +106,8 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         offwidth=1920, offheight=1080,
         camera={"pos": cam.location, "quat": euler_to_quat(*cam.rotation), "fovy": fovy, "clip": cam.clip},
         extent=STAT_EXTENT,
-        environment=env_xml, environment_assets=env_assets,
+        environment=env_xml, environment_assets=Markup("\n").join(a for a in asset_xml if a),
+        meshes=[{"name": n, "file": f, "scale": sc} for n, (f, sc) in sorted(assets.meshes.items())],
         robots=robots, objects=objects, zones=zones, servos=servos,
         actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
     ))
@@ -120,6 +125,35 @@ def pretty_xml(text: str) -> str:
 
 def _model_name(scene) -> str:
     return "morsec " + scene.environment.name
+
+
+def _class_assets(cls, cat: Catalogue, env, assets: Assets, context: dict) -> str:
+    """A component folder's assets.xml.j2 (meshes, textures, materials), its files copied into the build."""
+    template = component_template(cat, cls, "assets.xml.j2")
+    if not template:
+        return ""
+    assets.copy_folder(cls)
+    return render(env, template, **context)
+
+
+def _used_classes(scene, cat: Catalogue) -> list:
+    """Every robot, device and prop class the scene uses, once each, in a stable order."""
+    found: dict[str, object] = {}
+
+    def visit(comps):
+        for c in comps:
+            cls = cat.devices()[c.type]
+            found.setdefault(f"{cls.kind}/{cls.id}", cls)
+            visit(c.components)
+
+    for robot in scene.robots:
+        cls = cat.get("robots", robot.type)
+        found.setdefault(f"robot/{cls.id}", cls)
+        visit(robot.components)
+    for obj in scene.objects:
+        cls = cat.get("props", obj.type)
+        found.setdefault(f"prop/{cls.id}", cls)
+    return [found[k] for k in sorted(found)]
 
 
 def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:

@@ -130,7 +130,11 @@ class RobotHandle:
         return total
 
     def velocity(self) -> tuple[np.ndarray, np.ndarray]:
-        """(linear, angular) velocity of the base frame's origin, world frame."""
+        """(linear, angular) velocity of the base frame's origin, world frame (of a free robot: read from
+        qvel, so that a velocity just written there is seen at once)."""
+        if self.free:
+            v = self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
+            return v[:3].copy(), self.pose()[1] @ v[3:]
         res = np.zeros(6)
         mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_BODY, self.body_id, res, 0)
         return res[3:].copy(), res[:3].copy()

@@ -101,8 +101,8 @@ def _explain(error: dict, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
     last = path[-1] if path else None
 
     if kind == "unknown_key":
-        key = ctx["key"]
-        hint = did_you_mean(str(key), ctx.get("allowed", ())) or f"; allowed keys: {', '.join(ctx.get('allowed', ()))}"
+        key, allowed = ctx["key"], ctx.get("allowed", ())
+        hint = did_you_mean(str(key), allowed) or f"; allowed keys: {', '.join(allowed)}"
         return path + (key,), f"unknown key {key!r}{hint}", True
     if kind == "extra_forbidden" and len(path) >= 2 and path[-2] == "properties":
         return path, _unknown_property(path, data, cat), True
@@ -145,6 +145,8 @@ def _explain(error: dict, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
         return path, _bad_name(ctx), False
     if kind in _EXPECTED:
         message = f"must be {_EXPECTED[kind]}"
+        if len(path) >= 2 and path[-2] == "streams" and isinstance(last, int):
+            message = "must be a middleware name (socket) or a mapping {middleware: socket, port: ...}"
         if last in VECTOR_KEYS and kind == "list_type":
             message = f"must be a list {VECTOR_KEYS[last]}"
         return path, f"{message}, got {_describe(got)}", False

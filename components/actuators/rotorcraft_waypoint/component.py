@@ -25,7 +25,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
-from morsec.geometry import normalize_angle
+from morsec.geometry import matrix_to_euler, normalize_angle
 
 log = logging.getLogger("morsec.actuators.rotorcraft_waypoint")
 
@@ -98,7 +98,6 @@ class RotorcraftWaypoint(Actuator):
             return
 
         vel, _ = self.robot.velocity()
-        from morsec.geometry import matrix_to_euler
         roll, pitch, yaw = matrix_to_euler(rot)
         err = goal - pos
         ax = p.HorizontalPgain * err[0] - p.HorizontalDgain * vel[0]
