@@ -9,7 +9,7 @@ norm limited to MaxVelocity), v the robot's velocity and a its acceleration (fin
   turned into roll / pitch setpoints in the heading frame, each saturated at MaxBankAngle;
 * yaw: the setpoint is the integral of `vyaw` (counter-clockwise seen from above, as every angle here);
 * vertical: thrust = weight / max(cos^2 MaxBankAngle, cos roll cos pitch) + VerticalPgain (vz_sp - vz)
-  - VerticalDgain a_z (N), at least 0;
+  (N), at least 0 (VerticalDgain is accepted but unused, as in MORSE's controller);
 * attitude: torque_i = I_i (Kp_i err_i + Kd_i d(err_i)/dt) scaled by thrust / weight, as RotorcraftWaypoint.
 """
 
@@ -36,7 +36,9 @@ class RotorcraftVelocity(Actuator):
         HorizontalPgain: float = Field(0.2, description="horizontal velocity P gain, rad of tilt per m/s")
         HorizontalDgain: float = Field(0.8, description="horizontal acceleration D gain, rad per m/s^2")
         VerticalPgain: float = Field(8.0, description="vertical velocity P gain, N per m/s")
-        VerticalDgain: float = Field(2.0, description="vertical acceleration D gain, N per m/s^2")
+        VerticalDgain: float = Field(2.0, description="vertical acceleration D gain, N per m/s^2: unused, as "
+                                     "in MORSE (an acceleration fed back through the thrust makes a light "
+                                     "robot oscillate)")
         YawPgain: float = Field(12.0, description="yaw P gain of the inner loop, 1/s^2")
         YawDgain: float = Field(8.0, description="yaw D gain of the inner loop, 1/s")
         RollPitchPgain: float = Field(9.7, description="roll and pitch P gain of the inner loop, 1/s^2")
@@ -90,7 +92,7 @@ class RotorcraftVelocity(Actuator):
 
         weight = self._weight
         compensation = max(math.cos(bank) ** 2, math.cos(roll) * math.cos(pitch))
-        thrust = weight / compensation + p.VerticalPgain * error[2] - p.VerticalDgain * accel[2]
+        thrust = weight / compensation + p.VerticalPgain * error[2]  # MORSE leaves the D term out
         if weight > 0:
             thrust = max(0.0, thrust)
 
