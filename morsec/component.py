@@ -158,6 +158,9 @@ class Device(Component):
     def interrupt(self) -> None:
         """A running asynchronous service of this component was cancelled or preempted."""
 
+    def finalize(self) -> None:
+        """Called once when the simulation closes: free what `start` took (renderers, files)."""
+
     def completed(self, status: str = "SUCCESS", result: Any = None, request: Any = None) -> None:
         """End a running asynchronous service (the one started last, unless `request` is given)."""
         self.sim.requests.complete(self.name, status, result, request)
@@ -220,6 +223,11 @@ class Sensor(Device):
     def get_local_data(self) -> dict:
         """The last data this sensor computed."""
         return dict(self.local_data)
+
+    def serialize(self) -> dict | None:
+        """The message its streams publish for this tick: `local_data` (MORSE's straight JSON) unless the
+        sensor has its own format (cameras: pictures in base64); None: publish nothing this tick."""
+        return self.local_data
 
 
 class Actuator(Device):

@@ -244,8 +244,18 @@ def _cell(text: str) -> str:
 def _model_classes(root: type[BaseModel]) -> dict[str, type[BaseModel]]:
     """Every model class reachable from `root` through field annotations, by class name."""
     found: dict[str, type[BaseModel]] = {}
+    aliases = getattr(root, "__morsec_aliases__", {})
 
     def visit(annotation: Any) -> None:
+        if isinstance(annotation, typing.ForwardRef):
+            annotation = annotation.__forward_arg__
+        if isinstance(annotation, str):  # an unevaluated annotation such as list["AnyComponent"]
+            for name, alias in aliases.items():
+                if name in annotation:
+                    visit(alias)
+            return
+        if hasattr(annotation, "__value__"):  # a named type alias (AnyComponent)
+            annotation = annotation.__value__
         if isinstance(annotation, type) and issubclass(annotation, BaseModel):
             if annotation.__name__ in found:
                 return
@@ -267,6 +277,9 @@ def _variants(schema: dict, kind: str) -> list[str]:
     else:
         robot = schema["$defs"][_variants(schema, "robot")[0]]
         items = robot["properties"]["components"]["items"]
+    if "$ref" in items and "oneOf" not in items:  # a named alias (AnyComponent): its definition holds the union
+        target = schema["$defs"][items["$ref"].rsplit("/", 1)[-1]]
+        items = target if "oneOf" in target else items
     refs = items.get("oneOf", [items] if "$ref" in items else [])
     return [ref["$ref"].rsplit("/", 1)[-1] for ref in refs]
 

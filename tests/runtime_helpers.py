@@ -112,6 +112,12 @@ def scene_file(folder: Path, content: dict | None = None, name: str = "scene") -
     return path
 
 
+def build_folder(scene_path: Path, out: Path) -> Path:
+    """`morsec build scene_path -o out`, in this process."""
+    from morsec.compiler.build import build_scene
+    return build_scene(Path(scene_path), Path(out))
+
+
 # ------------------------------------------------------------------------------------------- clients
 class LineSocket:
     """A blocking TCP client reading newline-terminated lines with a timeout."""
@@ -223,15 +229,22 @@ class Morsec:
 
     def __init__(self, scene_path: Path, workdir: Path, *, args: tuple | list = (), service_port: int | str | None = None,
                  port_base: int | None = None, strategy: str | None = None, cwd: Path | None = None,
-                 build: Path | None = None, host: str = HOST):
-        """service_port: a port, None (a free one is picked) or "auto" (no --service-port: 4000, 4001 ...)."""
+                 build: Path | None = None, host: str = HOST, prebuild: bool = True):
+        """service_port: a port, None (a free one is picked) or "auto" (no --service-port: 4000, 4001 ...).
+        prebuild: build the scene here (the compiler's start-up is paid once per test session) and run
+        the build folder (`morsec run build/x`); else `morsec run scene.yaml -o build/x`."""
         self.scene_path = Path(scene_path)
         self.workdir = Path(workdir)
         self.host = host
         self.port_base = port_base if port_base is not None else free_ports(20)
         self.cwd = Path(cwd) if cwd else self.workdir
         self.build = Path(build) if build else self.workdir / f"build-{self.scene_path.stem}"
-        command = [str(MORSEC), "run", str(self.scene_path), "-o", str(self.build), "--port-base", str(self.port_base)]
+        if prebuild:
+            build_folder(self.scene_path, self.build)
+            command = [str(MORSEC), "run", str(self.build)]
+        else:
+            command = [str(MORSEC), "run", str(self.scene_path), "-o", str(self.build)]
+        command += ["--port-base", str(self.port_base)]
         if service_port == "auto":
             self.service_port = None  # known from the table
         else:
@@ -248,6 +261,8 @@ class Morsec:
         self.text_files: list[tuple[str, Path]] = []  # (fqn, file) of text streams
         self.sync_port: int | None = None
         self.announced_service_port: int | None = None
+        self.seen_at: dict[str, float] = {}  # stdout line -> time.monotonic() when first read
+        self.eof_at: float | None = None
 
     # ---- lifecycle
     def start(self) -> "Morsec":
@@ -262,8 +277,10 @@ class Morsec:
         for line in pipe:
             sink.append(line.rstrip("\n"))
             if forward:
+                self.seen_at.setdefault(line.strip(), time.monotonic())
                 self._lines.put(line.rstrip("\n"))
         if forward:
+            self.eof_at = time.monotonic()  # the process closed its stdout: it is exiting
             self._lines.put(None)
 
     def wait_ready(self, timeout: float = START_TIMEOUT) -> "Morsec":
@@ -370,6 +387,16 @@ class Morsec:
         return len(os.listdir(f"/proc/{self.pid}/fd"))
 
 
+def stop_all(*sims: Morsec) -> None:
+    """Stop several simulations at once (their shutdowns overlap)."""
+    for sim in sims:
+        if sim.alive():
+            with contextlib.suppress(ProcessLookupError):
+                sim.signal(signal.SIGTERM)
+    for sim in sims:
+        sim.stop()
+
+
 def start_all(*sims: Morsec) -> tuple[Morsec, ...]:
     """Start several simulations at once (their start-ups overlap) and wait until all are ready."""
     try:
@@ -378,14 +405,29 @@ def start_all(*sims: Morsec) -> tuple[Morsec, ...]:
         for sim in sims:
             sim.wait_ready()
     except BaseException:
-        for sim in sims:
-            sim.stop()
+        stop_all(*sims)
         raise
     return sims
 
 
 def run_to_exit(command: list[str], cwd: Path, timeout: float = 120.0) -> subprocess.CompletedProcess:
-    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=timeout)
+    return run_many([command], cwd, timeout)[0]
+
+
+def run_many(commands: list[list[str]], cwd: Path, timeout: float = 120.0) -> list[subprocess.CompletedProcess]:
+    """Run commands side by side until they exit; their CompletedProcess, in order."""
+    procs = [subprocess.Popen(c, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for c in commands]
+    results = []
+    try:
+        for command, proc in zip(commands, procs):
+            out, err = proc.communicate(timeout=timeout)
+            results.append(subprocess.CompletedProcess(command, proc.returncode, out, err))
+    finally:
+        for proc in procs:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait(10)
+    return results
 
 
 # ------------------------------------------------------------------------------------------- geometry

@@ -45,7 +45,8 @@ def sims(tmp_path_factory):
     holder = occupy(4000) if port_free(4000) else None  # 4000 busy either way
     second = Morsec(path, tmp, service_port="auto", build=tmp / "build-second")
     try:
-        start_all(main, second)
+        start_all(main)  # first: the explicit port of robot.odo is its own
+        start_all(second)
         yield main, second
     finally:
         main.stop()
@@ -149,10 +150,12 @@ def test_stream_lines_are_json_dumps_of_the_declared_fields(sim):
         raw_odo = odo.raw_line()
         odo.close()
     message = json.loads(raw)
-    assert list(message) == POSE_FIELDS
+    manifest = json.loads((sim.build / "manifest.json").read_text())
+    declared = {c["fqn"]: c["data_fields"] for c in manifest["components"]}
+    assert list(message) == declared["robot.pose"] == POSE_FIELDS
     assert raw == (json.dumps(message) + "\n").encode()  # default separators ", " and ": "
     assert b'"timestamp": ' in raw and b', "x": ' in raw
-    assert list(json.loads(raw_odo)) == ODO_FIELDS  # integrated level by default
+    assert list(json.loads(raw_odo)) == declared["robot.odo"] == ODO_FIELDS  # integrated level by default
     assert raw_odo == (json.dumps(json.loads(raw_odo)) + "\n").encode()
 
 

@@ -161,6 +161,12 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     static = robot.physics_type == "static" or cls.static
     collides = robot.collision and robot.ghost is None and robot.physics_type != "no_collision" and cls.collision
     _prepare_links(tree, robot)
+    # per-joint MuJoCo armature (drive-train inertia reflected through a gearbox) declared by the robot
+    # class: {URDF joint name: kg m^2}; URDF has no field for it
+    armature = getattr(cls, "joint_armature", {}) or {}
+    for link in tree.walk():
+        if link.joint and link.joint["name"] in armature:
+            link.joint["armature"] = float(armature[link.joint["name"]])
     tree.pos = np.asarray(robot.translate, dtype=float) + [0.0, 0.0, cls.spawn_height]
     tree.quat = euler_to_quat(*robot.rotate)
     components = [_component(c, robot.name, cat, env) for c in robot.components]

@@ -8,7 +8,7 @@ import logging
 import socket
 
 from morsec.middleware.poller import Connection, Poller, listen
-from morsec.middleware.socket_streams import _plain
+from morsec.middleware.socket_streams import _plain, decode
 from morsec.services.requests import FAILED, Request, RequestManager
 
 log = logging.getLogger("morsec.middleware.services")
@@ -80,7 +80,7 @@ class ServiceServer:
         args: list = []
         if len(tokens) == 4:
             try:
-                args = json.loads(tokens[3])
+                args = decode(tokens[3])
             except ValueError:
                 self._reply(conn, request_id, FAILED, f"malformed request: parameters are not valid JSON: {tokens[3][:80]!r}")
                 return

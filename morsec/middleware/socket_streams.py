@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import socket
 
 import numpy as np
@@ -18,6 +19,24 @@ MAX_INPUT_LINE = 1024 * 1024
 def encode(local_data) -> bytes:
     """json.dumps with Python's default separators, as MORSE (clients such as ArduPilot parse ', ')."""
     return (json.dumps(local_data, default=_plain) + "\n").encode("utf-8")
+
+
+def decode(text: str | bytes):
+    """json.loads of standard JSON only: NaN, Infinity and numbers that overflow a float are refused
+    (ValueError). One of them in a command reaches MuJoCo's state (a flying robot's velocity), and
+    MuJoCo then resets the whole world."""
+    return json.loads(text, parse_constant=_not_json, parse_float=_finite)
+
+
+def _not_json(name: str):
+    raise ValueError(f"{name} is not a JSON number")
+
+
+def _finite(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(f"{text} is out of range")
+    return value
 
 
 def _plain(value):
@@ -69,7 +88,7 @@ class SocketStream:
         complete, _, conn.inbuf = conn.inbuf.rpartition(b"\n")
         last = complete.rsplit(b"\n", 1)[-1]
         try:
-            message = json.loads(last.decode("utf-8"))
+            message = decode(last.decode("utf-8"))
         except (UnicodeDecodeError, ValueError):
             log.warning("%s: ignored a message that is not JSON: %.80r", self.component, last)
             return

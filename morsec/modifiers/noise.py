@@ -93,7 +93,9 @@ class OdometryNoise(Modifier):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        self.true_prev: tuple[float, float, float] | None = None
+        # the integrated odometry starts at 0 (the sensor's initial pose): so does its noisy twin, and the
+        # first tick's motion is scaled and drifted like every other
+        self.true_prev: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.noisy = np.zeros(3)  # x, y, yaw
 
     def _factor(self) -> float:
@@ -114,9 +116,6 @@ class OdometryNoise(Modifier):
             data["dyaw"] = normalize_angle(float(data["dyaw"]) + self._drift())
         if "x" in data and "yaw" in data:
             x, y, yaw = float(data["x"]), float(data["y"]), float(data["yaw"])
-            if self.true_prev is None:
-                self.true_prev = (x, y, yaw)
-                self.noisy[:] = (x, y, yaw)
             px, py, pyaw = self.true_prev
             c, s = math.cos(pyaw), math.sin(pyaw)
             local = np.array([c * (x - px) + s * (y - py), -s * (x - px) + c * (y - py)]) * self._factor()

@@ -73,6 +73,7 @@ class ComponentRuntime:
     text_streams: list[TextStream] = field(default_factory=list)
     modifiers: list = field(default_factory=list)
     active: bool = True
+    stopped: bool = False
     errors: set = field(default_factory=set)
 
     def fail_once(self, err: Exception) -> None:
@@ -430,18 +431,30 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
-        if any(s.listening for s in comp.socket_streams):
-            line = encode(inst.local_data)
+        listening = any(s.listening for s in comp.socket_streams)
+        if not (listening or comp.text_streams):
+            return
+        message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
+        if message is None:
+            return
+        if listening:
+            line = encode(message)
             for stream in comp.socket_streams:
                 stream.publish(line)
         for text in comp.text_streams:
-            text.write(inst.local_data)
+            text.write(message)
 
     def close(self) -> None:
         if getattr(self, "view", None) is not None:
             self.view.close()
             self.view = None
         for comp in getattr(self, "components", []):
+            if not comp.stopped:  # once: free what start took (renderers)
+                comp.stopped = True
+                try:
+                    comp.instance.finalize()
+                except Exception as err:
+                    comp.fail_once(err)
             for stream in comp.socket_streams:
                 stream.close()
             for text in comp.text_streams:

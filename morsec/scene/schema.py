@@ -8,6 +8,7 @@ from functools import lru_cache
 from typing import Annotated, Any, Literal, Union
 
 from pydantic import BaseModel, Field, create_model
+from typing_extensions import TypeAliasType
 
 from morsec.catalogue import Catalogue, camel_case
 from morsec.component import ComponentProperties
@@ -39,10 +40,10 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
             properties=(props, Field(default_factory=props, description="the component's properties")),
             level=(level_type, Field(None, description="level of realism: " + (", ".join(level_names) or "none"))),
         ))
-    any_component = Annotated[Union[tuple(device_variants)], Field(discriminator="type")]
+    # A named type alias: pydantic makes it one definition that nested `components` refer to, so each
+    # variant is generated once (a plain union would expand every variant inside every other one)
+    any_component = TypeAliasType("AnyComponent", Annotated[Union[tuple(device_variants)], Field(discriminator="type")])
     namespace = {"AnyComponent": any_component}
-    for variant in device_variants:
-        variant.model_rebuild(_types_namespace=namespace)
 
     robot_variants = []
     for rid, cls in sorted(cat.by_kind.get("robots", {}).items()):
@@ -53,8 +54,6 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
             type=(_type_literal(cls), Field(description=f"{rid} ({cls.builder_name})")),
             properties=(props, Field(default_factory=props, description="robot properties")),
         ))
-    for variant in robot_variants:
-        variant.model_rebuild(_types_namespace=namespace)
     any_robot = Annotated[Union[tuple(robot_variants)], Field(discriminator="type")]
 
     env_names = tuple(cat.ids("environments"))
@@ -65,12 +64,16 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
     obj = create_model("PassiveObject", __base__=m.ObjectSpec, __module__=GENERATED_MODULE,
                        __doc__=m.ObjectSpec.__doc__,
                        type=(Literal[prop_names], Field(description="prop id")))
-    return create_model(
+    scene = create_model(
         "Scene", __base__=m.SceneBase, __module__=GENERATED_MODULE, __doc__=m.SceneBase.__doc__,
         environment=(environment, Field(default_factory=environment)),
         robots=(list[any_robot], Field(default_factory=list, description="robots and their components")),
         objects=(list[obj], Field(default_factory=list, description="passive objects")),
     )
+    # one build of the whole tree: every variant's schema is generated once, inside the Scene's
+    scene.model_rebuild(_types_namespace=namespace)
+    scene.__morsec_aliases__ = namespace  # forward references left in the variants' own annotations
+    return scene
 
 
 def json_schema(cat: Catalogue) -> dict:

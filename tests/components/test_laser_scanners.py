@@ -4,10 +4,13 @@ floor seen from a known height."""
 
 from __future__ import annotations
 
+import csv
 import json
 import math
+import sys
 from pathlib import Path
 
+import mujoco
 import numpy as np
 import pytest
 from pydantic import ValidationError
@@ -81,6 +84,9 @@ def test_laser_folders_and_defaults(cid):
     assert (props.laser_range, props.scan_window, props.resolution, props.layers) == (rng, window, res, layers)
     assert set(type(props).model_fields) == {"laser_range", "resolution", "scan_window", "Visible_arc", "layers",
                                              "layer_separation", "layer_offset"}
+    arc = sys.modules[CATALOGUE.get("sensors", "laser_scanner").__module__].arc_directions
+    rays = arc(props.resolution, props.scan_window, props.layers, props.layer_separation, props.layer_offset)
+    assert rays.shape == (nray, 3) and np.linalg.norm(rays, axis=1) == pytest.approx(np.ones(nray))
     assert [lv.name for lv in cls.levels] == ["raw", "rssi"] and cls.default_level() == "raw"
     assert [f.name for f in cls.fields_at("raw")] == ["timestamp", "point_list", "range_list"]
     assert [f.name for f in cls.fields_at("rssi")] == ["timestamp", "point_list", "range_list", "remission_list"]
@@ -379,3 +385,48 @@ def test_velodyne_fan_and_rotation(tmp_path):
         azimuth = math.atan2(points[0, 1], points[0, 0])
         assert azimuth == pytest.approx(scans_before * 0.01745, abs=1e-6)  # 1 deg a scan, about +z
         assert points[down, 2] == pytest.approx(np.full(down.sum(), -h), abs=0.01)  # on the floor
+
+
+def test_component_models_are_visual_only(tmp_path):
+    # a velodyne's 0.2 m cylinder 2 m in front of the sick, on another (geometry-less) fake robot: not seen
+    scene = """environment: {name: empty, time: {strategy: fixed_step}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [0.0, 0.0, 0.5]
+    components:
+      - {name: sick, type: sick, color: [1.0, 0.0, 0.0]}
+  - name: post
+    type: fake_robot
+    translate: [2.0, 0.0, 0.5]
+    components:
+      - {name: velodyne, type: velodyne, color: [0.2, 0.2, 0.2, 0.5]}
+"""
+    with simulate(scene, tmp_path) as sim:
+        sim.step(1)
+        assert np.all(np.asarray(sim.data("r.sick")["range_list"]) == 30.0)
+        model = sim.sim.model
+        for body, rgba in (("r.sick", [1.0, 0.0, 0.0, 1.0]), ("post.velodyne", [0.2, 0.2, 0.2, 0.5])):
+            b = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, body)
+            geoms = np.flatnonzero(model.geom_bodyid == b)
+            assert len(geoms) == 1
+            g = geoms[0]
+            assert model.geom_group[g] == 2 and model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0
+            assert model.geom_rgba[g] == pytest.approx(rgba)
+
+
+def test_ten_publications_per_simulated_second(tmp_path):
+    # what a client sees: a text stream (CSV) of a Sick, one row per publication, timestamps in sim time
+    scene = """environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    components:
+      - {name: sick, type: sick, streams: [{middleware: text, file: sick.csv, format: csv}]}
+"""
+    with simulate(scene, tmp_path) as sim:
+        sim.run_for(2.0)
+    rows = list(csv.DictReader((tmp_path / "sick.csv").open()))
+    stamps = np.array([float(row["timestamp"]) for row in rows])
+    assert np.count_nonzero((stamps > 1.0 + 1e-6) & (stamps <= 2.0 + 1e-6)) == 10
+    assert len(json.loads(rows[-1]["range_list"])) == 181 and json.loads(rows[-1]["point_list"])[0] == [0.0, 0.0, 0.0]

@@ -152,3 +152,37 @@ robots:
                                              r"'quad\.poes'; did you mean 'quad\.pose'\?"):
         with simulate(text, tmp_path):
             pass
+
+
+SENSORS = ("gps", "imu", "accelerometer", "gyroscope", "velocity", "attitude", "barometer", "magnetometer",
+           "clock", "battery", "thermometer", "proximity", "radar_altimeter", "collision")
+
+
+def test_every_sensor_sends_plain_json(tmp_path):
+    """Values on the wire are Python floats, lists, dicts, strings and bools (no numpy types): the
+    standard json module serialises them without help, and each message starts with the timestamp."""
+    components = "\n".join(f"      - {{name: {s}, type: {s}}}" for s in SENSORS)
+    text = f"""
+environment:
+  name: empty
+  time: {{strategy: fixed_step, relative: true}}
+  properties: {{longitude: 1.4333, latitude: 43.6, altitude: 135.0}}
+robots:
+  - name: r
+    type: atrv
+    components:
+{components}
+      - {{name: gps_x, type: gps, level: extended}}
+      - {{name: all, type: compound, properties: {{sensors: "r.gps,r.gps_x,r.imu,r.proximity"}}}}
+  - {{name: other, type: atrv, translate: [4.0, 0.0, 0.0]}}
+objects:
+  - {{name: fire, type: box, translate: [0.0, 3.0, 0.25], properties: {{Fire: true}}}}
+"""
+    with simulate(text, tmp_path) as h:
+        h.run_for(0.25)
+        for name in [f"r.{s}" for s in SENSORS] + ["r.gps_x", "r.all"]:
+            data = h.component(name).local_data
+            assert next(iter(data)) == "timestamp"
+            decoded = json.loads(json.dumps(data))
+            assert decoded == json.loads(encode(data)), name
+    assert decoded["r.proximity"]["near_objects"] == {"other": pytest.approx(4.0, abs=0.01)}

@@ -108,13 +108,14 @@ class RotorcraftVelocity(Actuator):
     @service
     def setvel(self, vx: float, vy: float, vz: float, vyaw: float, tolerance: float = 0.1) -> bool:
         """Command a velocity (heading frame, m/s) and a yaw rate (rad/s) and return at once: False if the
-        robot already moves at that velocity (within `tolerance`; nothing is changed), else True."""
+        robot already moves at that velocity and yaw rate (each within `tolerance`; nothing is changed),
+        else True."""
         _, rot = self.robot.pose()
         yaw = math.atan2(rot[1, 0], rot[0, 0])
         c, s = math.cos(yaw), math.sin(yaw)
         wanted = np.array([c * float(vx) - s * float(vy), s * float(vx) + c * float(vy), float(vz)])
-        vel, _ = self.robot.velocity()
-        if float(np.linalg.norm(wanted - vel)) <= float(tolerance):
+        vel, omega = self.robot.velocity()
+        if float(np.linalg.norm(wanted - vel)) <= float(tolerance) and abs(float(vyaw) - omega[2]) <= float(tolerance):
             return False
         self.local_data.update(vx=float(vx), vy=float(vy), vz=float(vz), vyaw=float(vyaw),
                                tolerance=float(tolerance))

@@ -9,12 +9,14 @@ Per tick, with d the distance from this actuator to the goal (planar unless Free
 * otherwise status "Transit"; yaw rate w = sign(e) * s/2 (bounded so that one tick does not overshoot;
   within AngleTolerance it decreases linearly to 0 as e -> 0); forward speed v = min(s, d * frequency),
   and v = 0 while |e| >= 60 degrees (the robot turns on the spot first);
-* obstacle avoidance (ObstacleAvoidance and v != 0): MORSE's two radars (Radar.L / Radar.R, 3 m) are two
-  fans of rays cast with one `mj_multiRay` call from the actuator, horizontally, to the left and to the
-  right of the robot's heading. A hit counts when it lies in the corridor the robot is about to sweep
-  (ahead, within 3 m, laterally within the robot's half width + 0.25 m) and nearer than the goal; the
-  robot then turns away from the side whose obstacle is nearer at s/2, and stops going forward while
-  that obstacle is less than 0.35 m ahead of its front.
+* obstacle avoidance (ObstacleAvoidance): MORSE's two radars (Radar.L / Radar.R, 3 m) are two fans of rays
+  cast with one `mj_multiRay` call from the actuator, horizontally, to the left and to the right of the
+  robot's heading. A hit counts when it lies in the corridor the robot is about to sweep (ahead, within
+  3 m, laterally within the robot's half width + 0.25 m) and nearer than the goal; the robot then turns
+  away from the side whose obstacle is nearer at s/2, and stops going forward while that obstacle is
+  less than 0.35 m ahead of its front. While going round an obstacle (one was in the corridor during the
+  last 0.5 m driven, or one is within 0.3 m of the robot's footprint) the 60 degree rule is suspended:
+  the robot keeps going forward along the obstacle instead of turning back towards it on the spot.
 """
 
 from __future__ import annotations

@@ -22,8 +22,13 @@ class SegwayRMP400(Robot):
     wheel_track: ClassVar[float] = 0.62
     left_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_left_joint", "wheel_rear_left_joint")
     right_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_right_joint", "wheel_rear_right_joint")
-    wheel_kv: ClassVar[float] = 300.0  # x
-    wheel_max_torque: ClassVar[float] = 120.0  # x
+    wheel_kv: ClassVar[float] = 3000.0  # wheel velocity servo gain, N m per rad/s
+    wheel_max_torque: ClassVar[float] = 300.0  # N m per wheel
+    # drive train (hub motor rotor through the gearbox) reflected on each wheel joint, kg m^2: it also
+    # balances MuJoCo's contact solver between the light wheel spin and the heavy chassis, so that
+    # skid-steer turning slips as Coulomb friction says (without it the robot turns at half the rate)
+    joint_armature: ClassVar[dict[str, float]] = {
+        j: 2.0 for j in ("wheel_left_joint", "wheel_rear_left_joint", "wheel_right_joint", "wheel_rear_right_joint")}
 
     class Properties(RobotProperties):
         GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "

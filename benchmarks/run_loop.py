@@ -1,0 +1,149 @@
+"""morsec's main loop against a bare MuJoCo loop over the same compiled model (target: ratio <= 1.15).
+
+The reference scene: an ATRV with a pose sensor, an odometry sensor and a motion_vw actuator, all at
+60 Hz with socket streams, no client connected, `fixed_step`. The morsec side is `Simulation.run(duration)`,
+the whole loop as `morsec run` drives it: socket polling, actuator and sensor ticks (default_action,
+timestamps, modifiers), the clock, the service flush. The bare side is `mujoco.mj_step(m, d, nstep)` per
+frame, with the same number of physics sub-steps per frame, on a fresh MjData of the same scene.xml, for
+the same number of frames. Runs alternate (morsec, bare, morsec, ...) so that both see the same machine
+load, and the best of each is kept.
+
+    .venv/bin/python benchmarks/run_loop.py [--duration 20] [--repeats 5] [--profile]
+
+Prints both wall times, their ratio, the overhead per frame and the real-time factors.
+"""
+
+from __future__ import annotations
+
+import argparse
+import cProfile
+import io
+import json
+import pstats
+import random
+import socket
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import mujoco
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from morsec.catalogue import load_catalogue  # noqa: E402
+from morsec.compiler.build import build_scene  # noqa: E402
+from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
+
+TARGET = 1.15
+
+SCENE = """\
+environment:
+  name: empty
+  time: {strategy: fixed_step, frequency: 60}
+robots:
+  - name: robot
+    type: atrv
+    components:
+      - {name: pose, type: pose, translate: [0.0, 0.0, -0.1], frequency: 60, streams: [socket]}
+      - {name: odometry, type: odometry, frequency: 60, streams: [socket]}
+      - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
+"""
+
+
+def free_block(count: int) -> int:
+    """The first of `count` consecutive free TCP ports (below the ephemeral range)."""
+    rng = random.Random()
+    for _ in range(1000):
+        base = rng.randrange(20000, 32000 - count)
+        socks = []
+        try:
+            for port in range(base, base + count):
+                sock = socket.socket()
+                socks.append(sock)
+                sock.bind(("127.0.0.1", port))
+            return base
+        except OSError:
+            continue
+        finally:
+            for sock in socks:
+                sock.close()
+    raise RuntimeError("no free ports")
+
+
+def run_morsec(build: Path, catalogue, duration: float, profile: cProfile.Profile | None = None) -> tuple[float, int]:
+    """Wall seconds of Simulation.run(duration) (construction excluded) and the frames it ran."""
+    options = RunOptions(strategy="fixed_step", service_port=0, port_base=free_block(10))
+    sim = Simulation(build, catalogue, options)
+    start = time.perf_counter()
+    if profile:
+        profile.enable()
+    sim.run(duration)
+    if profile:
+        profile.disable()
+    wall = time.perf_counter() - start
+    return wall, sim.clock.frames
+
+
+def run_bare(build: Path, frames: int, substeps: int) -> float:
+    """Wall seconds of `frames` frames of mj_step(nstep=substeps) on the same compiled model."""
+    model = mujoco.MjModel.from_xml_path(str(build / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    start = time.perf_counter()
+    for _ in range(frames):
+        mujoco.mj_step(model, data, nstep=substeps)
+    return time.perf_counter() - start
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--duration", type=float, default=20.0, help="simulated seconds per run")
+    parser.add_argument("--repeats", type=int, default=5, help="runs of each side; the best is kept")
+    parser.add_argument("--build", type=Path, help="an existing build folder instead of the reference scene")
+    parser.add_argument("--profile", action="store_true", help="also profile one morsec run (cProfile)")
+    args = parser.parse_args(argv)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        if args.build:
+            build = args.build
+        else:
+            source = Path(tmp) / "run_loop.yaml"
+            source.write_text(SCENE)
+            build = build_scene(source, Path(tmp) / "build")
+        catalogue = load_catalogue(ROOT)
+        loop = json.loads((build / "manifest.json").read_text())["loop"]
+        substeps, frequency = int(loop["physics_substeps"]), float(loop["frequency"])
+
+        run_morsec(build, catalogue, 1.0)  # warm-up: imports, caches
+        best_morsec = best_bare = float("inf")
+        frames = 0
+        for _ in range(args.repeats):
+            wall, frames = run_morsec(build, catalogue, args.duration)
+            best_morsec = min(best_morsec, wall)
+            best_bare = min(best_bare, run_bare(build, frames, substeps))
+
+        simulated = frames / frequency
+        ratio = best_morsec / best_bare
+        print(f"scene: {'reference (ATRV: pose, odometry, motion_vw at 60 Hz, socket streams)' if not args.build else build}")
+        print(f"loop: {frequency:g} Hz x {substeps} physics sub-steps (timestep {loop['timestep']:.6g} s), "
+              f"{frames} frames = {simulated:g} simulated s, best of {args.repeats}")
+        print(f"bare mujoco.mj_step : {best_bare:8.3f} s wall  ({best_bare / frames * 1e6:7.1f} us/frame, "
+              f"real-time factor {simulated / best_bare:7.1f})")
+        print(f"morsec Simulation   : {best_morsec:8.3f} s wall  ({best_morsec / frames * 1e6:7.1f} us/frame, "
+              f"real-time factor {simulated / best_morsec:7.1f})")
+        print(f"overhead            : {(best_morsec - best_bare) / frames * 1e6:8.1f} us/frame")
+        print(f"ratio morsec / bare : {ratio:8.3f}  (target <= {TARGET}) {'OK' if ratio <= TARGET else 'ABOVE TARGET'}")
+
+        if args.profile:
+            profile = cProfile.Profile()
+            run_morsec(build, catalogue, args.duration, profile)
+            out = io.StringIO()
+            pstats.Stats(profile, stream=out).sort_stats("tottime").print_stats(15)
+            print(out.getvalue())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,45 @@
+"""MORSE's VideoCamera: RGBA pictures rendered by MuJoCo's offscreen renderer (see morsec/camera.py)."""
+
+from morsec.camera import CameraProperties, CameraSensor, CameraView, b64
+from morsec.component import DataField
+
+
+class VideoCamera(CameraSensor):
+    """A video camera: RGBA pictures of `cam_width` x `cam_height` pixels, looking along the component's
+    +x axis, and the intrinsic matrix that goes with them (fx = fy = max(w, h) * cam_focal / 32, or from
+    `cam_fov`; principal point at the image centre). `capture(n)` grabs n pictures then answers; the
+    socket message is MORSE's `{timestamp, height, width, image: base64 RGBA, intrinsic_matrix}`, sent only
+    on ticks that grabbed a picture. Renders without shadows or reflections unless `shadows` is on."""
+
+    short_descr = "Video camera: RGBA pictures and their intrinsic matrix"
+    builder_name = "VideoCamera"
+    frequency = 20.0
+    Properties = CameraProperties
+
+    data = (
+        DataField("image", b"", "RGBA image",
+                  "the picture: cam_height x cam_width x 4 uint8 (RGBA, alpha 255), first row at the top unless "
+                  "Vertical_Flip is false; on the wire base64 of its cam_width * cam_height * 4 bytes"),
+        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
+                  "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
+    )
+
+    def start(self) -> None:
+        super().start()
+        self.view = CameraView.of(self.sim, self.name, self.properties)
+        self.local_data["intrinsic_matrix"] = self.view.matrix
+
+    def grab(self) -> None:
+        self.local_data["image"] = self.view.rgba(self.properties)
+
+    def message(self) -> dict:
+        return {
+            "timestamp": self.local_data["timestamp"],
+            "height": self.view.height,
+            "width": self.view.width,
+            "image": b64(self.local_data["image"]),
+            "intrinsic_matrix": self.local_data["intrinsic_matrix"],
+        }
+
+
+COMPONENT = VideoCamera

@@ -1,0 +1,379 @@
+"""What every camera sensor shares (MORSE's `morse.sensors.camera.Camera`): the camera model, the
+offscreen renderers, depth images turned into points, and the capture state of MORSE's VideoCamera.
+
+* **Geometry.** MORSE's cameras are Blender cameras: a 32 mm wide sensor across the *larger* image side
+  and a lens of `cam_focal` mm (or a field of view `cam_fov` across that side). In pixels
+  fx = fy = max(w, h) / 2 / tan(fov / 2) = max(w, h) * focal / 32, and the principal point is the image
+  centre (w / 2, h / 2). The MJCF camera of a component looks along the component's +x with +z up
+  (MuJoCo cameras look along their own -z, +y up: `xyaxes="0 -1 0 0 0 1"`), and its `fovy` is
+  2 atan(h / 2 / fy): the intrinsic matrix is the one of the rendered picture, pixel for pixel.
+* **Rendering.** `mujoco.Renderer` (EGL, else OSMesa: `morsec/__init__.py` chooses), one per image size
+  and per simulation, shared by every camera of that size (`RendererPool`), opened when the sensor
+  starts: a camera that cannot render stops the start of the simulation with `open_renderer`'s
+  one-line message naming the missing system package. Each camera sets the clip planes
+  (`cam_near`, `cam_far`) for its own render (MuJoCo has one pair per model: `vis.map.znear/zfar`,
+  restored right after) and renders without shadows or reflections unless its `shadows` property is on.
+* **Depth.** MuJoCo's depth image is already linear: metres along the optical axis (planar depth, the
+  z of the point in the camera frame), `cam_far` where nothing was hit. Points are expressed in the
+  optical frame of the camera: x right, y down, z forward (MORSE: "X and Y are in the image plane,
+  and Z is the depth axis"), at pixel centres: x = z (u + 0.5 - cx) / fx, y = z (v + 0.5 - cy) / fy with
+  u the column from the left and v the row from the top of the picture.
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+import weakref
+from typing import Any, Callable, ClassVar
+
+import numpy as np
+from pydantic import Field, model_validator
+
+from morsec.component import ComponentProperties, Sensor, async_service, service
+from morsec.errors import MorsecError
+
+SENSOR_WIDTH_MM = 32.0  # Blender's camera sensor (MORSE's BLENDER_HORIZONTAL_APERTURE)
+# the MJCF camera's axes in its component's frame: image x (right) = -y, image y (up) = +z; it looks along +x
+XYAXES = "0 -1 0 0 0 1"
+# optical frame (x right, y down, z forward) -> component frame (x forward, y left, z up)
+OPTICAL_TO_COMPONENT = np.array([[0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, -1.0, 0.0]])
+
+
+# ------------------------------------------------------------------------------------------ geometry
+def focal_pixels(width: int, height: int, focal: float, fov: float = 0.0) -> float:
+    """fx = fy in pixels. `fov` (degrees, across the larger side) wins over `focal` (mm) when > 0."""
+    half = max(width, height) / 2.0
+    if fov > 0.0:
+        return half / math.tan(math.radians(fov) / 2.0)
+    return half * focal / (SENSOR_WIDTH_MM / 2.0)
+
+
+def intrinsic_matrix(width: int, height: int, focal: float, fov: float = 0.0) -> list[list[float]]:
+    """MORSE's 3x3 intrinsic matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]."""
+    f = focal_pixels(width, height, focal, fov)
+    return [[f, 0.0, width / 2.0], [0.0, f, height / 2.0], [0.0, 0.0, 1.0]]
+
+
+def fovy_degrees(width: int, height: int, focal: float, fov: float = 0.0) -> float:
+    """MuJoCo's vertical field of view for that picture (MuJoCo takes the horizontal one from the aspect)."""
+    return math.degrees(2.0 * math.atan(height / 2.0 / focal_pixels(width, height, focal, fov)))
+
+
+def optical_rotation(yaw: float) -> np.ndarray:
+    """Rotation of points from the optical frame of a camera turned by `yaw` (rad, about the component's
+    +z, to the left) into the optical frame of the camera not turned."""
+    c, s = math.cos(yaw), math.sin(yaw)
+    rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return OPTICAL_TO_COMPONENT.T @ rz @ OPTICAL_TO_COMPONENT
+
+
+class CameraProperties(ComponentProperties):
+    """MORSE's Camera properties (`camera.py`), with the VideoCamera builder's defaults."""
+
+    cam_width: int = Field(256, ge=1, description="image width, pixels (read at start)")
+    cam_height: int = Field(256, ge=1, description="image height, pixels (read at start)")
+    cam_focal: float = Field(35.0, gt=0, description="focal length, mm, for a 32 mm sensor across the larger "
+                             "image side (read at start)")
+    cam_fov: float = Field(0.0, ge=0, lt=180, description="field of view across the larger image side, deg; "
+                           "0: not set (MORSE's None), cam_focal decides; when set it wins over cam_focal")
+    cam_near: float = Field(0.1, gt=0, description="near clipping distance, m")
+    cam_far: float = Field(100.0, gt=0, description="far clipping distance, m")
+    Vertical_Flip: bool = Field(True, description="true: the image's first row is the top of the picture; false: "
+                                "the bottom (OpenGL's order)")
+    capturing: bool = Field(True, description="grab images (MORSE toggles it with the Space key); false: no "
+                            "image, no message")
+    retrieve_depth: bool = Field(False, description="MORSE's switch to a depth buffer; accepted, no effect: "
+                                 "the component type decides what is rendered")
+    retrieve_zbuffer: bool = Field(False, description="MORSE's raw z-buffer switch; accepted, no effect")
+    shadows: bool = Field(False, description="render shadows and reflections (off: sensor cameras render "
+                          "without them, faster)")
+
+    @model_validator(mode="after")
+    def _clip_planes(self):
+        if self.cam_far <= self.cam_near:
+            raise ValueError(f"cam_far ({self.cam_far}) must be larger than cam_near ({self.cam_near})")
+        return self
+
+    # derived values, for the MJCF template (`properties.fovy`) and the sensor
+    @property
+    def focal_pixels(self) -> float:
+        return focal_pixels(self.cam_width, self.cam_height, self.cam_focal, self.cam_fov)
+
+    @property
+    def fovy(self) -> float:
+        return fovy_degrees(self.cam_width, self.cam_height, self.cam_focal, self.cam_fov)
+
+    @property
+    def intrinsic_matrix(self) -> list[list[float]]:
+        return intrinsic_matrix(self.cam_width, self.cam_height, self.cam_focal, self.cam_fov)
+
+
+class DepthCameraProperties(CameraProperties):
+    """MORSE's DepthCamera builder defaults: clip planes 1 and 20 m, depth, no vertical flip."""
+
+    cam_near: float = Field(1.0, gt=0, description="near clipping distance, m: nothing closer is seen")
+    cam_far: float = Field(20.0, gt=0, description="far clipping distance, m: nothing farther is seen")
+    retrieve_depth: bool = Field(True, description="MORSE's depth switch; accepted, no effect")
+    Vertical_Flip: bool = Field(False, description="true: the image's first row is the top of the picture; false: "
+                                "the bottom (OpenGL's order, MORSE's depth default)")
+
+
+# ------------------------------------------------------------------------------------------ rendering
+class RendererPool:
+    """The offscreen renderers of one simulation: one `mujoco.Renderer` per image size, shared by every
+    camera of that size (cameras render one after the other, on the loop thread)."""
+
+    def __init__(self, model):
+        self.model = model
+        self.renderers: dict[tuple[int, int], Any] = {}
+
+    def get(self, width: int, height: int):
+        key = (int(width), int(height))
+        renderer = self.renderers.get(key)
+        if renderer is None:
+            from morsec.render import open_renderer
+            use_chosen_gl()
+            renderer = open_renderer(self.model, key[0], key[1])
+            self.renderers[key] = renderer
+        return renderer
+
+    def close(self) -> None:
+        for renderer in self.renderers.values():
+            renderer.close()
+        self.renderers.clear()
+
+
+_POOLS: "weakref.WeakKeyDictionary[Any, RendererPool]" = weakref.WeakKeyDictionary()
+
+
+def use_chosen_gl() -> None:
+    """MuJoCo reads MUJOCO_GL once, when it is first imported: a program (or a test session) that imported
+    mujoco before morsec got MuJoCo's default, GLFW, which needs a display. Hand mujoco.Renderer the
+    headless backend morsec chose (EGL or OSMesa, in MUJOCO_GL) instead."""
+    import os
+    try:
+        from mujoco.rendering.classic import gl_context
+    except ImportError:
+        return
+    wanted = os.environ.get("MUJOCO_GL", "").lower().strip()
+    chosen = getattr(gl_context, "_MUJOCO_GL", wanted)
+    if chosen == wanted or wanted not in ("egl", "osmesa"):
+        return
+    try:
+        if wanted == "egl":
+            from mujoco.egl import GLContext
+        else:
+            from mujoco.osmesa import GLContext
+    except (ImportError, OSError, RuntimeError):
+        return  # open_renderer reports what is missing
+    gl_context.GLContext = GLContext
+    gl_context._MUJOCO_GL = wanted
+
+
+def renderer_pool(sim) -> RendererPool:
+    pool = _POOLS.get(sim)
+    if pool is None:
+        pool = _POOLS[sim] = RendererPool(sim.model)
+    return pool
+
+
+def close_renderers(sim) -> None:
+    pool = _POOLS.pop(sim, None)
+    if pool is not None:
+        pool.close()
+
+
+_OPTION = None
+
+
+def _scene_option():
+    """What sensor cameras see: MuJoCo's default visualisation (geom groups 0-2, no sites, no contacts)."""
+    global _OPTION
+    if _OPTION is None:
+        import mujoco
+        _OPTION = mujoco.MjvOption()
+    return _OPTION
+
+
+class CameraView:
+    """One MJCF camera of a component with its picture size and intrinsics, rendering through the pool."""
+
+    def __init__(self, sim, camera: str, width: int, height: int, focal: float, fov: float = 0.0):
+        import mujoco
+        self.sim = sim
+        self.name = camera
+        self.id = mujoco.mj_name2id(sim.model, mujoco.mjtObj.mjOBJ_CAMERA, camera)
+        if self.id < 0:
+            raise ValueError(f"scene.xml has no camera {camera!r}: rebuild the scene")
+        self.width, self.height = int(width), int(height)
+        self.fx = focal_pixels(self.width, self.height, focal, fov)
+        self.matrix = intrinsic_matrix(self.width, self.height, focal, fov)
+        # the picture is what the intrinsics say, whatever fovy scene.xml was written with
+        sim.model.cam_fovy[self.id] = fovy_degrees(self.width, self.height, focal, fov)
+        try:
+            self.renderer = renderer_pool(sim).get(self.width, self.height)
+        except MorsecError as err:  # the simulation's start reports it as "<component>: <message>"
+            raise ValueError(" ".join(err.message.split())) from None
+
+    @classmethod
+    def of(cls, sim, camera: str, p: CameraProperties) -> "CameraView":
+        return cls(sim, camera, p.cam_width, p.cam_height, p.cam_focal, p.cam_fov)
+
+    def _render(self, depth: bool, near: float, far: float, effects: bool, out=None) -> np.ndarray:
+        import mujoco
+        m, d, r = self.sim.model, self.sim.data, self.renderer
+        # the loop runs mj_kinematics before sensors; camera poses come from mj_camlight
+        mujoco.mj_camlight(m, d)
+        vis, extent = m.vis.map, float(m.stat.extent)
+        saved = (vis.znear, vis.zfar)
+        vis.znear, vis.zfar = near / extent, far / extent
+        try:
+            if depth:
+                r.enable_depth_rendering()
+            else:
+                r.disable_depth_rendering()
+            r.update_scene(d, camera=self.id, scene_option=_scene_option())
+            r.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = bool(effects)
+            r.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = bool(effects)
+            return r.render(out=out)
+        finally:
+            vis.znear, vis.zfar = saved
+
+    def rgba(self, p: CameraProperties) -> np.ndarray:
+        """A fresh RGBA picture, height x width x 4 uint8, alpha 255, rows as `Vertical_Flip` says."""
+        rgb = self._render(False, p.cam_near, p.cam_far, p.shadows)
+        image = np.empty((self.height, self.width, 4), dtype=np.uint8)
+        image[..., :3] = rgb if p.Vertical_Flip else rgb[::-1]
+        image[..., 3] = 255
+        return image
+
+    def depth(self, p: CameraProperties) -> np.ndarray:
+        """A fresh depth image, height x width float32, metres along the optical axis (cam_far: nothing),
+        rows as `Vertical_Flip` says."""
+        depth = self._render(True, p.cam_near, p.cam_far, False)
+        return depth if p.Vertical_Flip else np.ascontiguousarray(depth[::-1])
+
+
+# ------------------------------------------------------------------------------------------ depth -> points
+def parse_keep_list(text: str, height: int) -> list[int]:
+    """MORSE's `keep_list` ("[1, 17, 34]" or "1, 17, 34"): the image rows kept; empty: every row."""
+    text = text.strip().strip("[]()").strip()
+    if not text:
+        return list(range(height))
+    try:
+        rows = [int(item) for item in text.split(",") if item.strip()]
+    except ValueError:
+        raise ValueError(f"keep_list must list row numbers, e.g. '[1, 17, 34]' (got {text!r})") from None
+    bad = [r for r in rows if not 0 <= r < height]
+    if bad:
+        raise ValueError(f"keep_list rows {bad} are outside the image (0..{height - 1})")
+    return rows
+
+
+def pixel_rays(width: int, height: int, fx: float, rows: list[int], vertical_flip: bool) -> np.ndarray:
+    """(len(rows) * width) x 3 float32: for each kept pixel, in row-major order, the point of depth 1 in the
+    optical frame, [(u + 0.5 - cx) / fx, (v + 0.5 - cy) / fy, 1]. `rows` index the image as delivered
+    (top first when `vertical_flip`, bottom first otherwise)."""
+    rows_arr = np.asarray(rows, dtype=np.float64)
+    v = rows_arr if vertical_flip else (height - 1 - rows_arr)  # row from the top of the picture
+    u = np.arange(width, dtype=np.float64)
+    x = (u + 0.5 - width / 2.0) / fx
+    y = (v + 0.5 - height / 2.0) / fx
+    rays = np.empty((len(rows), width, 3), dtype=np.float64)
+    rays[..., 0] = x[None, :]
+    rays[..., 1] = y[:, None]
+    rays[..., 2] = 1.0
+    return rays.reshape(-1, 3).astype(np.float32)
+
+
+def depth_points(depth: np.ndarray, rows: list[int], rays: np.ndarray, far: float,
+                 keep_resolution: bool) -> np.ndarray:
+    """Points (N x 3 float32, optical frame) of the kept rows of a depth image. Pixels that saw nothing
+    within `far` are dropped (MORSE), or NaN when `keep_resolution` (one point per kept pixel)."""
+    z = depth[rows].reshape(-1)
+    points = rays * z[:, None]
+    hit = z < far * (1.0 - 1e-4)
+    if keep_resolution:
+        points[~hit] = np.nan
+        return points
+    return np.ascontiguousarray(points[hit])
+
+
+def b64(array) -> str:
+    """Base64 text of an array's bytes (row-major, native little-endian on every platform MuJoCo runs on)."""
+    if isinstance(array, (bytes, bytearray)):
+        return base64.b64encode(array).decode("ascii")
+    return base64.b64encode(np.ascontiguousarray(array).tobytes()).decode("ascii")
+
+
+# ------------------------------------------------------------------------------------------ capture
+class CameraSensor(Sensor):
+    """MORSE's VideoCamera capture logic, for every sensor that grabs pictures.
+
+    A tick grabs when the `capturing` property is on and no `capture(n)` count has run out: `capture(n)`
+    grabs n pictures (one per tick, at the sensor's frequency), then completes and stops grabbing (as
+    MORSE: the camera is then idle until the next `capture`); n < 0 grabs until cancelled; n = 0
+    completes at once and stops grabbing. A tick that did not grab publishes nothing (MORSE's empty
+    message). Subclasses implement `grab()` (render, fill `local_data`) and `message()` (the socket
+    message)."""
+
+    Properties: ClassVar[type[ComponentProperties]] = CameraProperties
+    frequency = 20.0
+
+    def start(self) -> None:
+        self.capturing = False  # did the last tick grab a picture
+        self._n = -1  # pictures left to grab; negative: no limit
+        self._done: Callable[[], None] | None = None
+
+    def finalize(self) -> None:
+        close_renderers(self.sim)
+
+    # ---- the tick
+    def default_action(self) -> None:
+        if not (self.properties.capturing and self._n != 0):
+            self.capturing = False
+            return
+        self.grab()
+        self.capturing = True
+        if self._n > 0:
+            self._n -= 1
+            if self._n == 0:
+                self._finish()
+
+    def grab(self) -> None:
+        raise NotImplementedError
+
+    # ---- capture(n)
+    def start_capture(self, n: int, done: Callable[[], None] | None = None) -> None:
+        """Grab `n` pictures, then call `done` (a stereo unit drives its cameras with this)."""
+        self._n = int(n)
+        self._done = done
+        if self._n == 0:
+            self._finish()
+
+    def _finish(self) -> None:
+        done, self._done = self._done, None
+        if done is not None:
+            done()
+
+    @async_service
+    def capture(self, n: int) -> None:
+        """Grab `n` pictures (one per tick), then answer SUCCESS and stop grabbing; n < 0: until cancelled."""
+        self.start_capture(n, lambda: self.completed("SUCCESS"))
+
+    def interrupt(self) -> None:
+        self._n = 0
+        self._done = None
+
+    # ---- what goes on the wire
+    def message(self) -> dict:
+        raise NotImplementedError
+
+    def serialize(self) -> dict | None:
+        return self.message() if self.capturing else None
+
+    @service
+    def get_local_data(self) -> dict:
+        """The last data this camera computed, as its socket message (pictures in base64)."""
+        return self.message()

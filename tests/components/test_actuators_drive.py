@@ -1,0 +1,290 @@
+"""Actuators that drive robots through their physics: motion_vw_diff (wheel speeds of a differential
+robot), steer_force (a car's steering, engine and brakes), force_torque, external_force, drag (forces on
+the robot's body) and quadrotor_dynamic_control (rotor speeds). Each test drives a robot and checks where
+it ends up against numbers computed by hand."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from morsec.catalogue import load_catalogue
+from morsec.testing import simulate
+
+G = 9.81
+SUB_MASS = 470.0  # the submarine floats (NoGravity): a clean body to push around
+
+
+def scene(robot: str, components: list[str], z: float = 0.0, yaw: float = 0.0, properties: str = "",
+          name: str = "r") -> str:
+    comps = "".join(f"      - {c}\n" for c in components)
+    return f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: {name}
+    type: {robot}
+    translate: [0.0, 0.0, {z}]
+    rotate: [0.0, 0.0, {yaw}]
+    {properties}
+    components:
+{comps}"""
+
+
+def yaw_change(sim, name: str, seconds: float) -> float:
+    """Run `seconds` and return the unwrapped yaw change of robot `name`."""
+    yaws = [sim.yaw(name)]
+    for _ in range(round(seconds * sim.sim.clock.frequency)):
+        sim.step()
+        yaws.append(sim.yaw(name))
+    return float(np.unwrap(yaws)[-1] - yaws[0])
+
+
+# ---------------------------------------------------------------- motion_vw_diff
+
+def differential_robots() -> list[str]:
+    cat = load_catalogue()
+    return [rid for rid in cat.ids("robots")
+            if all(hasattr(cat.get("robots", rid), a)
+                   for a in ("wheel_radius", "wheel_track", "left_wheel_joints", "right_wheel_joints"))]
+
+
+@pytest.mark.parametrize("robot", differential_robots())
+def test_motion_vw_diff_drives_forward(robot, tmp_path):
+    with simulate(scene(robot, ["{name: motion, type: motion_vw_diff}"]), tmp_path) as sim:
+        sim.run_for(0.2)
+        start, _ = sim.body_pose("r")
+        sim.command("r.motion", v=0.5, w=0.0)
+        sim.run_for(2.0)
+        pos, rot = sim.body_pose("r")
+        moved = pos - start
+        assert moved[0] == pytest.approx(1.0, abs=0.15)
+        assert abs(moved[1]) < 0.05 and abs(sim.yaw("r")) < 0.05
+        assert rot[2, 2] > math.cos(math.radians(3))
+
+
+@pytest.mark.parametrize("robot", differential_robots())
+def test_motion_vw_diff_turns_as_commanded(robot, tmp_path):
+    with simulate(scene(robot, ["{name: motion, type: motion_vw_diff}"]), tmp_path) as sim:
+        sim.run_for(0.2)
+        sim.command("r.motion", v=0.5, w=0.25)
+        sim.run_for(0.5)  # accelerate
+        left = yaw_change(sim, "r", 2.0) / 2.0
+        sim.command("r.motion", v=0.5, w=-0.25)
+        sim.run_for(0.5)
+        right = yaw_change(sim, "r", 2.0) / 2.0
+    # skid-steering slips: the rate is w's within the wheels' slip, and symmetric
+    assert 0.6 * 0.25 < left < 1.3 * 0.25
+    assert right == pytest.approx(-left, rel=0.1)
+
+
+def test_motion_vw_diff_wheel_speeds_and_services(tmp_path):
+    """Wheel speeds are (v -+ e w) / R with e half of FixTurningSpeed (MORSE); stop() holds the wheels."""
+    with simulate(scene("segwayrmp400", ["{name: motion, type: motion_vw_diff}"],
+                        properties="properties: {FixTurningSpeed: 1.0}"), tmp_path) as sim:
+        m, d = sim.sim.model, sim.sim.data
+        sim.call("r.motion", "set_speed", 0.4, 0.2)
+        sim.step()
+        radius = 0.2667
+        for joint, side in (("wheel_left_joint", 1), ("wheel_rear_left_joint", 1),
+                            ("wheel_right_joint", -1), ("wheel_rear_right_joint", -1)):
+            act = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"r.motion/{joint}")
+            assert m.actuator_trnid[act][0] == m.joint(f"r/{joint}").id
+            assert d.ctrl[act] == pytest.approx((0.4 - side * 0.5 * 0.2) / radius)
+        sim.call("r.motion", "stop")
+        assert sim.data("r.motion") == {"v": 0.0, "w": 0.0}
+        sim.run_for(1.5)
+        assert np.abs(d.qvel[6:10]).max() < 0.05
+        assert np.linalg.norm(d.qvel[:3]) < 0.02
+
+
+def test_motion_vw_diff_services_are_declared():
+    cls = load_catalogue().get("actuators", "MotionVWDiff")
+    assert {"set_speed", "stop"} <= set(cls.services())
+    assert [f.name for f in cls.data] == ["v", "w"]
+
+
+# ---------------------------------------------------------------- steer_force
+
+def test_steer_force_drives_brakes_and_steers_a_car(tmp_path):
+    with simulate(scene("hummer", ["{name: sf, type: steer_force}"]), tmp_path) as sim:
+        d = sim.sim.data
+        # forward: negative force, as MORSE; 4 x 0.4 x 3000 N on 2440 kg (+ wheel inertia) ~ 1.9 m/s^2
+        sim.command("r.sf", steer=0.0, force=-3000.0, brake=0.0)
+        sim.run_for(2.0)
+        pos, _ = sim.body_pose("r")
+        speed = d.qvel[0]
+        assert 3.0 < pos[0] < 4.2 and abs(pos[1]) < 0.05
+        assert 3.2 < speed < 4.0
+        # brake: it stops, and stays stopped
+        sim.command("r.sf", brake=50.0)
+        sim.run_for(3.0)
+        assert np.linalg.norm(d.qvel[:3]) < 0.05
+        stopped, _ = sim.body_pose("r")
+        # steer left (positive): the car turns counter-clockwise, towards +y
+        yaw0 = sim.yaw("r")
+        sim.command("r.sf", steer=0.3, force=-2000.0)
+        sim.run_for(3.0)
+        pos, _ = sim.body_pose("r")
+        assert sim.yaw("r") - yaw0 > 0.3 and pos[1] - stopped[1] > 0.5
+        steer = sim.sim.model.joint("r/steer_left_joint")
+        assert d.qpos[steer.qposadr[0]] == pytest.approx(0.3, abs=0.02)
+        # steer right: clockwise
+        yaw1 = sim.yaw("r")
+        sim.command("r.sf", steer=-0.3, force=-2000.0)
+        sim.run_for(3.0)
+        assert sim.yaw("r") - yaw1 < -0.3
+
+
+def test_steer_force_reverses_and_clamps_the_steering(tmp_path):
+    with simulate(scene("hummer", ["{name: sf, type: steer_force}"]), tmp_path) as sim:
+        sim.command("r.sf", steer=2.0, force=1500.0)  # positive force: backwards; steer beyond the hinges
+        sim.run_for(1.5)
+        pos, _ = sim.body_pose("r")
+        assert pos[0] < -0.3
+        steer = sim.sim.model.joint("r/steer_right_joint")
+        assert sim.sim.data.qpos[steer.qposadr[0]] == pytest.approx(0.6, abs=0.02)
+
+
+# ---------------------------------------------------------------- force_torque, external_force, drag
+
+def submarine(components: list[str], yaw: float = 0.0) -> str:
+    return scene("submarine", components, z=2.0, yaw=yaw)
+
+
+@pytest.mark.parametrize("yaw", [0.0, math.pi / 2])
+def test_force_torque_in_the_robot_frame(yaw, tmp_path):
+    comps = ["{name: ft, type: force_torque, properties: {RobotFrame: true}}"]
+    with simulate(submarine(comps, yaw), tmp_path) as sim:
+        start, _ = sim.body_pose("r")
+        sim.command("r.ft", force=[100.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.run_for(2.0)
+        pos, _ = sim.body_pose("r")
+        expected = 0.5 * 100.0 / SUB_MASS * 2.0 ** 2
+        heading = np.array([math.cos(yaw), math.sin(yaw), 0.0])
+        assert pos - start == pytest.approx(expected * heading, abs=0.01 * expected + 1e-3)
+        assert abs(sim.yaw("r") - yaw) < 1e-3
+
+
+def test_force_torque_torque_spins_the_robot(tmp_path):
+    comps = ["{name: ft, type: force_torque, properties: {RobotFrame: true}}"]
+    with simulate(submarine(comps), tmp_path) as sim:
+        izz = sim.sim.robots[0].handle.inertia()[2, 2]
+        sim.command("r.ft", force=[0.0, 0.0, 0.0], torque=[0.0, 0.0, 10.0])
+        turned = yaw_change(sim, "r", 1.0)
+        assert turned == pytest.approx(0.5 * 10.0 / izz, rel=0.02)
+
+
+def test_force_torque_in_the_actuator_frame_adds_the_lever_arm(tmp_path):
+    """An actuator 1 m to the left pushing forward drives the robot forward and yaws it clockwise; an
+    actuator turned 90 degrees pushes along its own x axis (the robot's y)."""
+    comps = ["{name: ft, type: force_torque, translate: [0.0, 1.0, 0.0]}"]
+    with simulate(submarine(comps), tmp_path) as sim:
+        sim.command("r.ft", force=[100.0, 0.0, 0.0])
+        turned = yaw_change(sim, "r", 1.0)
+        pos, _ = sim.body_pose("r")
+        assert turned < -0.005 and pos[0] > 0.05
+    comps = ["{name: ft, type: force_torque, rotate: [0.0, 0.0, 1.5708]}"]
+    with simulate(submarine(comps), tmp_path, name="turned") as sim:
+        start, _ = sim.body_pose("r")
+        sim.command("r.ft", force=[100.0, 0.0, 0.0])
+        sim.run_for(1.0)
+        moved = sim.body_pose("r")[0] - start
+        assert moved[1] == pytest.approx(0.5 * 100.0 / SUB_MASS, rel=0.02) and abs(moved[0]) < 1e-3
+
+
+def test_external_force_is_in_the_world_frame_and_adds_up(tmp_path):
+    comps = ["{name: wind, type: external_force}",
+             "{name: ft, type: force_torque, properties: {RobotFrame: true}}"]
+    with simulate(submarine(comps, yaw=math.pi / 2), tmp_path) as sim:
+        start, _ = sim.body_pose("r")
+        sim.command("r.wind", force=[100.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.run_for(1.0)
+        moved = sim.body_pose("r")[0] - start
+        assert moved == pytest.approx([0.5 * 100.0 / SUB_MASS, 0.0, 0.0], abs=2e-3)
+        # the robot's own thrusters push along its x axis (world y) while the wind pushes along world x:
+        # against a wind along world -y of the same size, the two cancel
+        sim.command("r.wind", force=[0.0, -100.0, 0.0])
+        sim.command("r.ft", force=[100.0, 0.0, 0.0])
+        sim.step()
+        assert sim.sim.data.xfrc_applied[sim.sim.robots[0].handle.body_id] == pytest.approx(np.zeros(6), abs=1e-6)
+
+
+def test_drag_gives_a_terminal_velocity(tmp_path):
+    comps = ["{name: ft, type: force_torque, properties: {RobotFrame: true}}",
+             "{name: water, type: drag, properties: {DragCoeffX: 100.0}}"]
+    with simulate(submarine(comps), tmp_path) as sim:
+        sim.command("r.ft", force=[100.0, 0.0, 0.0])
+        sim.run_for(12.0)
+        v = sim.sim.data.qvel[0]
+        assert v == pytest.approx(math.sqrt(100.0 / 100.0), rel=0.03)
+        # cut the thrust: drag slows it down, dv/dt = -C v^2 / m
+        sim.command("r.ft", force=[0.0, 0.0, 0.0])
+        sim.run_for(2.0)
+        expected = 1.0 / (1.0 / v + 100.0 / SUB_MASS * 2.0)
+        assert sim.sim.data.qvel[0] == pytest.approx(expected, rel=0.03)
+
+
+def test_drag_is_not_exportable():
+    cls = load_catalogue().get("actuators", "Drag")
+    assert cls.exportable is False and not cls.data
+    assert cls.Properties().model_dump() == {"DragCoeffX": 0.09, "DragCoeffY": 0.09, "DragCoeffZ": 0.5}
+
+
+# ---------------------------------------------------------------- quadrotor_dynamic_control
+
+def quadrotor(configuration: str = "+") -> str:
+    return scene("quadrotor", [f"{{name: engines, type: quadrotor_dynamic_control, "
+                               f"properties: {{Configuration: '{configuration}'}}}}"], z=1.0)
+
+
+def hover_speed(mass: float) -> float:
+    return math.sqrt(mass * G / (4 * 9.169e-6))
+
+
+def test_quadrotor_hovers_then_climbs(tmp_path):
+    with simulate(quadrotor(), tmp_path) as sim:
+        mass = sim.sim.robots[0].handle.mass
+        w = hover_speed(mass)
+        sim.command("r.engines", engines=[w] * 4)
+        start, _ = sim.body_pose("r")
+        sim.run_for(2.0)
+        pos, rot = sim.body_pose("r")
+        assert np.linalg.norm(pos - start) < 0.02 and rot[2, 2] > 0.9999
+        sim.command("r.engines", engines=[1.05 * w] * 4)
+        sim.run_for(1.0)
+        climbed = sim.body_pose("r")[0][2] - pos[2]
+        assert climbed == pytest.approx(0.5 * G * (1.05 ** 2 - 1) * 1.0 ** 2, rel=0.03)
+
+
+@pytest.mark.parametrize("configuration, rotor, axis, sign", [
+    ("+", 2, 0, +1),   # rotor 3 (+x) faster: nose up, negative pitch
+    ("+", 3, 1, +1),   # rotor 4 (+y) faster: positive roll
+    ("x", 0, 1, +1),   # rotor 1 (front left) faster: positive roll, negative pitch
+])
+def test_quadrotor_rotor_torques(configuration, rotor, axis, sign, tmp_path):
+    from morsec.geometry import matrix_to_euler
+    with simulate(quadrotor(configuration), tmp_path) as sim:
+        w = hover_speed(sim.sim.robots[0].handle.mass)
+        engines = [w] * 4
+        engines[rotor] *= 1.01
+        sim.command("r.engines", engines=engines)
+        sim.run_for(0.3)
+        roll, pitch, yaw = matrix_to_euler(sim.body_pose("r")[1])
+        if (configuration, rotor) == ("+", 2):
+            assert pitch < -0.01 and abs(roll) < 1e-3
+        elif (configuration, rotor) == ("+", 3):
+            assert roll > 0.01 and abs(pitch) < 1e-3
+        else:
+            assert roll > 0.005 and pitch < -0.005
+        # rotors 1 and 3 turn clockwise: their drag yaws the body clockwise
+        assert (yaw < 0) == (rotor in (0, 2))
+
+
+def test_quadrotor_dynamic_control_declares_morse_properties():
+    cls = load_catalogue().get("actuators", "QuadrotorDynamicControl")
+    assert cls.Properties().model_dump() == {"ThrustFactor": 9.169e-6, "DragFactor": 2.4e-7, "Lever": 0.18,
+                                             "Configuration": "+"}
+    assert [(f.name, f.default) for f in cls.data] == [("engines", [0.0, 0.0, 0.0, 0.0])]

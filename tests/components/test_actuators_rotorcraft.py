@@ -1,0 +1,250 @@
+"""Rotorcraft actuators (rotorcraft_waypoint, rotorcraft_velocity, rotorcraft_attitude, stabilized_quadrotor)
+flying a quadrotor that has its weight: they act through forces and torques on its base (d.xfrc_applied)
+or, for stabilized_quadrotor, through MORSE's linear model. Each test checks where the robot ends up."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from morsec.catalogue import load_catalogue
+from morsec.services.requests import Request
+from morsec.testing import simulate
+
+# a 1.0 kg rigid body the size of a quadrotor, used when the catalogue has no `quadrotor` robot
+TEST_QUAD = {
+    "component.py": '''from morsec.component import Robot
+
+
+class TestQuad(Robot):
+    """A 1.0 kg quadrotor-sized rigid body (tests)."""
+
+    short_descr = "test quadrotor"
+    xacro = "robot.urdf.xacro"
+    spawn_height = 0.05
+
+
+COMPONENT = TestQuad
+''',
+    "robot.urdf.xacro": '''<?xml version="1.0"?>
+<robot name="$(arg name)" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="name" default="testquad"/>
+  <link name="base_link">
+    <inertial><mass value="1.0"/><inertia ixx="0.008" ixy="0" ixz="0" iyy="0.008" iyz="0" izz="0.014"/></inertial>
+    <collision><geometry><box size="0.4 0.4 0.1"/></geometry></collision>
+  </link>
+</robot>
+''',
+}
+
+
+@pytest.fixture(scope="module")
+def quad(tmp_path_factory) -> tuple[str, Path | None]:
+    """(robot type, project folder): the catalogue's quadrotor, or a test one in a project folder."""
+    if "quadrotor" in load_catalogue(Path(__file__).parent).ids("robots"):
+        return "quadrotor", None
+    project = tmp_path_factory.mktemp("project")
+    (project / "morsec.toml").write_text('[project]\ncomponents = ["components"]\n')
+    folder = project / "components" / "robots" / "testquad"
+    folder.mkdir(parents=True)
+    for name, text in TEST_QUAD.items():
+        (folder / name).write_text(text)
+    return "testquad", project
+
+
+def flying(quad, actuator: str, z: float = 1.0) -> tuple[str, dict]:
+    robot_type, project = quad
+    text = f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: quad
+    type: {robot_type}
+    translate: [0.0, 0.0, {z}]
+    components:
+      - {{name: pose, type: pose}}
+      - {actuator}
+"""
+    return text, {"project": project}
+
+
+def pose(h) -> dict:
+    return h.data("quad.pose")
+
+
+def position(h) -> np.ndarray:
+    p = pose(h)
+    return np.array([p["x"], p["y"], p["z"]])
+
+
+def velocity(h, fqn: str = "quad.motion") -> np.ndarray:
+    return h.component(fqn).robot.velocity()[0]
+
+
+class Client:
+    def __init__(self, harness):
+        self.h, self.replies, self.count = harness, {}, 0
+
+    def send(self, component: str, service: str, *args) -> str:
+        self.count += 1
+        rid = f"r{self.count}"
+        self.h.sim.requests.handle(Request(rid, component, service, list(args),
+                                           lambda i, s, r: self.replies.__setitem__(i, (s, r)), client=self))
+        return rid
+
+
+# ------------------------------------------------------------------------------------------- rotorcraft_waypoint
+def test_rotorcraft_waypoint_holds_its_initial_point(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint}")
+    with simulate(text, tmp_path, **kw) as h:
+        wp = h.component("quad.motion")
+        assert list(h.data("quad.motion")) == ["x", "y", "z", "yaw", "tolerance"]
+        props = wp.properties.model_dump()
+        assert props["HorizontalPgain"] == pytest.approx(math.radians(6))
+        assert props["MaxBankAngle"] == pytest.approx(math.radians(30))
+        assert (props["VerticalPgain"], props["RollPitchPgain"], props["RemainAtDestination"], props["Target"]) == \
+            (8.0, 9.7, True, "wp_target")
+        start = h.body_pose("quad")[0]
+        h.run_for(3.0)
+        assert h.body_pose("quad")[0] == pytest.approx(start, abs=0.02)  # it carries its weight
+        assert wp.get_status() == "Arrived"
+
+
+def test_rotorcraft_waypoint_flies_to_a_point_and_heading(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint}")
+    with simulate(text, tmp_path, **kw) as h:
+        wp = h.component("quad.motion")
+        h.command("quad.motion", x=2.0, y=1.0, z=3.0, yaw=1.0, tolerance=0.2)
+        h.step()
+        assert wp.get_status() == "Transit"
+        h.run_for(8.0)
+        assert np.linalg.norm(position(h) - [2.0, 1.0, 3.0]) <= 0.2
+        assert pose(h)["yaw"] == pytest.approx(1.0, abs=0.05)
+        assert wp.get_status() == "Arrived"
+
+
+def test_rotorcraft_waypoint_goto_answers_arrived_and_can_be_preempted(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint, services: [socket]}")
+    with simulate(text, tmp_path, **kw) as h:
+        client = Client(h)
+        first = client.send("quad.motion", "goto", 5.0, 0.0, 2.0, 0.0)
+        h.run_for(0.5)
+        second = client.send("quad.motion", "goto", -1.0, 1.0, 2.0, 0.0, 0.3)
+        assert client.replies[first] == ("PREEMPTED", None)
+        h.run_for(10.0)
+        assert client.replies[second] == ("SUCCESS", "Arrived")
+        assert np.linalg.norm(position(h) - [-1.0, 1.0, 2.0]) <= 0.3
+        rid = client.send("quad.motion", "setdest", -1.0, 1.0, 2.0, 0.0, 0.3)
+        assert client.replies[rid] == ("SUCCESS", False)  # already there
+
+
+# ------------------------------------------------------------------------------------------- rotorcraft_velocity
+def test_rotorcraft_velocity_holds_the_commanded_velocity(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_velocity}", z=2.0)
+    with simulate(text, tmp_path, **kw) as h:
+        assert list(h.data("quad.motion")) == ["vx", "vy", "vz", "vyaw", "tolerance"]
+        h.run_for(1.0)
+        assert np.linalg.norm(velocity(h)) < 0.02  # hovers
+        h.command("quad.motion", vx=0.0, vy=0.0, vz=0.5, vyaw=0.0)
+        h.run_for(2.0)
+        assert velocity(h) == pytest.approx([0.0, 0.0, 0.5], abs=0.05)
+        h.command("quad.motion", vx=1.0, vy=0.0, vz=0.0, vyaw=0.0)
+        h.run_for(15.0)
+        assert velocity(h) == pytest.approx([1.0, 0.0, 0.0], abs=0.1)
+        x, z = pose(h)["x"], pose(h)["z"]
+        h.run_for(1.0)
+        assert pose(h)["x"] - x == pytest.approx(1.0, abs=0.1)
+        assert pose(h)["z"] == pytest.approx(z, abs=0.05)  # holds its height
+        assert pose(h)["yaw"] == pytest.approx(0.0, abs=0.02)
+
+
+def test_rotorcraft_velocity_yaw_rate_and_setvel(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_velocity}", z=2.0)
+    with simulate(text, tmp_path, **kw) as h:
+        assert h.call("quad.motion", "setvel", 0.0, 0.0, 0.0, 0.0) is False  # already still
+        assert h.call("quad.motion", "setvel", 0.0, 0.0, 0.0, 0.5) is True
+        h.run_for(2.0)
+        assert pose(h)["yaw"] == pytest.approx(1.0, abs=0.1)  # counter-clockwise
+        assert np.linalg.norm(velocity(h)) < 0.05
+
+
+# ------------------------------------------------------------------------------------------- rotorcraft_attitude
+def test_rotorcraft_attitude_hovers_and_tilts_in_ned(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_attitude}", z=2.0)
+    with simulate(text, tmp_path, **kw) as h:
+        assert list(h.data("quad.motion")) == ["roll", "pitch", "yaw", "thrust"]
+        robot = h.component("quad.motion").robot
+        hover = robot.weight() / 40.0  # ThrustFactor 40 N at full thrust
+        start = h.body_pose("quad")[0]
+        h.command("quad.motion", roll=0.0, pitch=0.0, yaw=0.0, thrust=hover)
+        h.run_for(1.0)
+        assert h.body_pose("quad")[0] == pytest.approx(start, abs=0.05)
+        # NED pitch 0.1: nose up, the thrust pulls backwards (-x); the height is about kept
+        h.command("quad.motion", roll=0.0, pitch=0.1, yaw=0.0, thrust=hover / math.cos(0.1))
+        h.run_for(1.0)
+        assert pose(h)["pitch"] == pytest.approx(-0.1, abs=0.02)
+        assert velocity(h)[0] < -0.7 and abs(velocity(h)[1]) < 0.05
+        # NED roll 0.1: right side down, it goes right (-y)
+        h.command("quad.motion", roll=0.1, pitch=0.0, yaw=0.0, thrust=hover / math.cos(0.1))
+        h.run_for(1.0)
+        assert pose(h)["roll"] == pytest.approx(0.1, abs=0.02)
+        assert velocity(h)[1] < -0.7
+        # thrust 0: released, it falls
+        h.command("quad.motion", roll=0.0, pitch=0.0, yaw=0.0, thrust=0.0)
+        h.run_for(0.3)
+        assert velocity(h)[2] < -2.0
+
+
+def test_rotorcraft_attitude_yaw_rate_is_clockwise(quad, tmp_path):
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_attitude}", z=2.0)
+    with simulate(text, tmp_path, **kw) as h:
+        hover = h.component("quad.motion").robot.weight() / 40.0
+        h.command("quad.motion", roll=0.0, pitch=0.0, yaw=0.5, thrust=hover)
+        h.run_for(2.0)
+        assert pose(h)["yaw"] == pytest.approx(-1.0, abs=0.3)  # NED yaw rate: clockwise seen from above
+
+
+# ------------------------------------------------------------------------------------------- stabilized_quadrotor
+def test_stabilized_quadrotor_follows_morse_linear_model(quad, tmp_path):
+    """The numbers of MORSE's stabilized_quadrirotor_testing.py."""
+    text, kw = flying(quad, "{name: motion, type: stabilized_quadrotor, services: [socket]}")
+    with simulate(text, tmp_path, **kw) as h:
+        assert list(h.data("quad.motion")) == ["theta_c", "phi_c", "psi_c", "h_c"]
+        h.command("quad.motion", theta_c=0.0, phi_c=0.0, psi_c=0.0, h_c=10.0)
+        h.run_for(3.0)
+        assert position(h) == pytest.approx([0.0, 0.0, 10.0], abs=0.2)
+        h.command("quad.motion", theta_c=0.1, phi_c=0.0, psi_c=0.0, h_c=10.0)
+        h.run_for(1.0)
+        p1 = pose(h)
+        assert (p1["x"], p1["y"], p1["z"]) == pytest.approx((0.4, 0.0, 10.0), abs=0.2)
+        assert p1["pitch"] == pytest.approx(0.1, abs=0.1)
+        h.run_for(1.0)
+        assert pose(h)["x"] == pytest.approx(0.4 + 1.4, abs=0.2)
+        h.command("quad.motion", theta_c=0.0, phi_c=0.0, psi_c=0.0, h_c=10.0)
+        h.run_for(1.0)
+        x3 = pose(h)["x"]
+        assert x3 == pytest.approx(0.4 + 1.4 + 2.0, abs=0.2)
+        h.run_for(1.0)
+        assert pose(h)["x"] == pytest.approx(x3 + 2.0, abs=0.2)  # no drag: the velocity stays
+        client = Client(h)
+        client.send("quad.motion", "stop")
+        h.run_for(1.0)
+        assert pose(h)["x"] == pytest.approx(x3 + 2.0, abs=0.2)
+        # psi_c: a yaw rate of about -psi_c * 10 / 1.4
+        h.command("quad.motion", theta_c=0.0, phi_c=0.0, psi_c=0.1, h_c=12.0)
+        h.run_for(1.0)
+        assert pose(h)["yaw"] == pytest.approx(-0.69, abs=0.1)
+        h.run_for(1.0)
+        assert pose(h)["yaw"] == pytest.approx(-1.38, abs=0.1)
+        assert pose(h)["z"] == pytest.approx(12.0, abs=0.2)
+        # phi_c: acceleration towards -y
+        h.command("quad.motion", theta_c=0.0, phi_c=0.1, psi_c=0.0, h_c=12.0)
+        client.send("quad.motion", "stop")
+        h.command("quad.motion", theta_c=0.0, phi_c=0.1, psi_c=0.0, h_c=12.0)
+        y0, yaw = pose(h)["y"], pose(h)["yaw"]
+        h.run_for(1.0)
+        moved = np.array([pose(h)["x"] - (x3 + 2.0), pose(h)["y"] - y0])
+        # 0.4 m in the direction of the robot's -y axis (it faces `yaw`)
+        assert moved == pytest.approx(0.4 * np.array([math.sin(yaw), -math.cos(yaw)]), abs=0.2)

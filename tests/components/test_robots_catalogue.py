@@ -1,0 +1,176 @@
+"""The robots segwayrmp400, b21, morsy, hummer, quadrotor and submarine: each builds, its URDF is valid for
+ROS tools, its mass is the one its README gives, it stands on the ground at `translate` z = 0 (or floats,
+NoGravity) and stays there for 5 simulated seconds, and it moves as the actuator MORSE pairs it with
+commands. (tests/test_catalogue_components.py runs generic checks over the whole catalogue; the driving
+actuators themselves are tested in test_actuators_drive.py.)"""
+
+from __future__ import annotations
+
+import math
+import shutil
+import subprocess
+
+import mujoco
+import numpy as np
+import pytest
+
+from morsec.testing import simulate
+
+# robot id -> (builder class name, mass in kg, floats by default)
+ROBOTS = {
+    "segwayrmp400": ("SegwayRMP400", 118.0, False),
+    "b21": ("B21", 122.0, False),
+    "morsy": ("Morsy", 8.0, False),
+    "hummer": ("Hummer", 2440.0, False),
+    "quadrotor": ("Quadrotor", 1.0, False),
+    "submarine": ("Submarine", 470.0, True),
+}
+SETTLE_S = 5.0
+MAX_DRIFT_M = 0.01
+MAX_TILT = math.radians(3.0)
+
+
+def scene(robot: str, z: float = 0.0, components: str = "", yaw: float = 0.0) -> str:
+    text = f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: r
+    type: {robot}
+    translate: [0.0, 0.0, {z}]
+    rotate: [0.0, 0.0, {yaw}]
+"""
+    return text + (f"    components:\n{components}" if components else "")
+
+
+def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, bodies: set[int]) -> float:
+    """Lowest z of the colliding geoms of `bodies` (boxes, cylinders, spheres)."""
+    low = math.inf
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] not in bodies or not (model.geom_contype[g] or model.geom_conaffinity[g]):
+            continue
+        z, rot, size = data.geom_xpos[g][2], data.geom_xmat[g].reshape(3, 3), model.geom_size[g]
+        kind = model.geom_type[g]
+        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+            low = min(low, z - size[0])
+        elif kind == mujoco.mjtGeom.mjGEOM_BOX:
+            low = min(low, z - float(np.abs(rot[2]) @ size))
+        elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
+            axis_z = abs(rot[2, 2])
+            low = min(low, z - axis_z * size[1] - math.sqrt(max(0.0, 1 - axis_z ** 2)) * size[0])
+    return low
+
+
+def robot_bodies(model: mujoco.MjModel, root: int) -> set[int]:
+    out = {root}
+    for b in range(root + 1, model.nbody):
+        if model.body_parentid[b] in out:
+            out.add(b)
+    return out
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_robot_is_in_the_catalogue_under_its_morse_name(robot, tmp_path):
+    from morsec.catalogue import load_catalogue
+    cat = load_catalogue(tmp_path)
+    cls = cat.get("robots", ROBOTS[robot][0])
+    assert cls.id == robot and cls.builder_name == ROBOTS[robot][0]
+    assert (cls.folder / "README.md").is_file() and (cls.folder / cls.xacro).is_file()
+    assert cls.Properties().NoGravity is ROBOTS[robot][2]
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_robot_urdf_passes_check_urdf(robot, build_yaml):
+    out = build_yaml(scene(robot))
+    path = out / "robots" / "r.urdf"
+    check_urdf = shutil.which("check_urdf")
+    if check_urdf is None:
+        pytest.skip("check_urdf (liburdfdom-tools) is not installed")
+    result = subprocess.run([check_urdf, str(path)], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "Successfully Parsed XML" in result.stdout
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_robot_stands_or_floats_still(robot, build_yaml):
+    _, mass, floats = ROBOTS[robot]
+    z = 1.0 if floats else 0.0
+    out = build_yaml(scene(robot, z))
+    model = mujoco.MjModel.from_xml_path(str(out / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    body = model.body("r").id
+    bodies = robot_bodies(model, body)
+    assert model.body_subtreemass[body] == pytest.approx(mass)
+    # spawn_height: translate z = 0 puts the lowest colliding part on the ground
+    assert lowest_point(model, data, bodies) == pytest.approx(z, abs=1e-6)
+    start = data.xpos[body].copy()
+    mujoco.mj_step(model, data, nstep=round(SETTLE_S / model.opt.timestep))
+    assert np.isfinite(data.qpos).all()
+    moved = data.xpos[body] - start
+    tilt = math.acos(min(1.0, float(data.xmat[body].reshape(3, 3)[2, 2])))
+    assert np.linalg.norm(moved) < MAX_DRIFT_M, f"moved by {moved}"
+    assert tilt < MAX_TILT, f"tipped by {math.degrees(tilt):.2f} deg"
+    warnings = {mujoco.mjtWarning(i).name: w.number for i, w in enumerate(data.warning) if w.number}
+    assert not warnings
+
+
+def test_submarine_without_no_gravity_sinks_to_the_ground(build_yaml):
+    out = build_yaml(scene("submarine", 1.0).replace("    rotate:", "    properties: {NoGravity: false}\n    rotate:"))
+    model = mujoco.MjModel.from_xml_path(str(out / "scene.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_step(model, data, nstep=round(2.0 / model.opt.timestep))
+    # resting on its hull: the origin one hull radius (0.25 m) above the ground
+    assert data.xpos[model.body("r").id][2] == pytest.approx(0.25, abs=0.005)
+
+
+@pytest.mark.parametrize("robot", ["b21", "morsy"])
+def test_round_robots_drive_with_motion_vw(robot, tmp_path):
+    with simulate(scene(robot, components="      - {name: motion, type: motion_vw}\n"), tmp_path) as sim:
+        sim.command("r.motion", v=0.5, w=0.0)
+        sim.run_for(2.0)
+        pos, rot = sim.body_pose("r")
+        assert pos[0] == pytest.approx(1.0, abs=0.05)
+        assert abs(pos[1]) < 0.02 and rot[2, 2] > math.cos(MAX_TILT)
+        yaw0 = sim.yaw("r")
+        sim.command("r.motion", v=0.0, w=0.5)
+        sim.run_for(1.0)
+        assert sim.yaw("r") - yaw0 == pytest.approx(0.5, abs=0.05)
+
+
+def test_segway_drives_through_its_wheels(tmp_path):
+    with simulate(scene("segwayrmp400", components="      - {name: motion, type: motion_vw_diff}\n"),
+                  tmp_path) as sim:
+        sim.command("r.motion", v=0.5, w=0.0)
+        sim.run_for(2.0)
+        pos, _ = sim.body_pose("r")
+        assert pos[0] == pytest.approx(1.0, abs=0.15) and abs(pos[1]) < 0.05
+        # the wheels turn at v / R
+        wheel = sim.sim.model.joint("r/wheel_left_joint")
+        assert sim.sim.data.qvel[wheel.dofadr[0]] == pytest.approx(0.5 / 0.2667, rel=0.05)
+
+
+def test_hummer_drives_with_steer_force(tmp_path):
+    with simulate(scene("hummer", components="      - {name: sf, type: steer_force}\n"), tmp_path) as sim:
+        sim.command("r.sf", force=-3000.0)
+        sim.run_for(2.0)
+        pos, _ = sim.body_pose("r")
+        assert pos[0] > 2.0 and abs(pos[1]) < 0.05
+
+
+def test_quadrotor_flies_with_its_rotors(tmp_path):
+    comps = "      - {name: engines, type: quadrotor_dynamic_control}\n"
+    with simulate(scene("quadrotor", components=comps), tmp_path) as sim:
+        hover = math.sqrt(1.0 * 9.81 / (4 * 9.169e-6))
+        sim.command("r.engines", engines=[1.1 * hover] * 4)
+        sim.run_for(1.0)
+        pos, rot = sim.body_pose("r")
+        assert pos[2] > 0.11 + 0.5 and rot[2, 2] > math.cos(MAX_TILT)
+
+
+def test_submarine_moves_with_force_torque(tmp_path):
+    comps = "      - {name: thrust, type: force_torque, properties: {RobotFrame: true}}\n"
+    with simulate(scene("submarine", 2.0, components=comps), tmp_path) as sim:
+        sim.command("r.thrust", force=[470.0, 0.0, 0.0])
+        sim.run_for(1.0)
+        pos, _ = sim.body_pose("r")
+        assert pos == pytest.approx([0.5, 0.0, 2.25], abs=0.01)

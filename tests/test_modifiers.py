@@ -1,0 +1,390 @@
+"""Modifiers (`alter`): seeded Gaussian noise with the right statistics, coordinate conventions against
+independent computations, actuator inputs converted back, and build-time errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from morsec.compiler.build import build_scene
+from morsec.errors import SceneError
+from morsec.testing import simulate
+
+LAT, LON, ALT = 43.6, 1.4333, 135.0
+A = 6378137.0
+F = 1 / 298.257223563
+E2 = F * (2 - F)
+FEET = 3.2808399
+TICKS = 1200
+
+
+# ---------------------------------------------------------------- independent WGS84
+
+def ecef_of(lat_deg: float, lon_deg: float, alt: float) -> np.ndarray:
+    lat, lon = math.radians(lat_deg), math.radians(lon_deg)
+    n = A / math.sqrt(1 - E2 * math.sin(lat) ** 2)
+    return np.array([(n + alt) * math.cos(lat) * math.cos(lon), (n + alt) * math.cos(lat) * math.sin(lon),
+                     (n * (1 - E2) + alt) * math.sin(lat)])
+
+
+def enu_axes(lat_deg: float, lon_deg: float):
+    lat, lon = math.radians(lat_deg), math.radians(lon_deg)
+    return (np.array([-math.sin(lon), math.cos(lon), 0.0]),
+            np.array([-math.sin(lat) * math.cos(lon), -math.sin(lat) * math.sin(lon), math.cos(lat)]),
+            np.array([math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat)]))
+
+
+def ecef_of_scene(x: float, y: float, z: float) -> np.ndarray:
+    e, n, u = enu_axes(LAT, LON)
+    return ecef_of(LAT, LON, ALT) + x * e + y * n + z * u
+
+
+def geodetic_of(p) -> tuple[float, float, float]:
+    """(lat, lon, alt) by Bowring's fixed-point iteration on the latitude (converges to 1e-12 deg)."""
+    x, y, z = p
+    r = math.hypot(x, y)
+    lat = math.atan2(z, r * (1 - E2))
+    for _ in range(10):
+        n = A / math.sqrt(1 - E2 * math.sin(lat) ** 2)
+        alt = r / math.cos(lat) - n
+        lat = math.atan2(z, r * (1 - E2 * n / (n + alt)))
+    n = A / math.sqrt(1 - E2 * math.sin(lat) ** 2)
+    return math.degrees(lat), math.degrees(math.atan2(y, x)), r / math.cos(lat) - n
+
+
+# ---------------------------------------------------------------- noise
+
+NOISY = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [1.0, 2.0, 3.0]
+    rotate: [0.1, 0.2, 0.3]
+    components:
+      - {name: pose, type: pose, modifiers: [{name: noise, pos_std: 0.1, rot_std: 0.05}]}
+      - {name: default, type: pose, modifiers: [{name: noise}]}
+      - name: axes
+        type: pose
+        modifiers: [{name: noise, pos_std: {x: 0.1, y: 0.2, z: 0.3}, rot_std: {roll: 0.01, pitch: 0.02, yaw: 0.03}}]
+      - {name: flat, type: pose, modifiers: [{name: noise, pos_std: 0.1, rot_std: 0.05, _2D: true}]}
+      - {name: odo, type: odometry, modifiers: [{name: noise, pos_std: 0.2, rot_std: 0.02}]}
+      - {name: gps, type: gps, modifiers: [{name: noise, pos_std: 0.5}]}
+      - {name: gyro, type: gyroscope, modifiers: [{name: noise, rot_std: {yaw: 0.1}}]}
+      - {name: imu, type: imu, modifiers: [{name: noise, gyro_std: 0.01, accel_std: {x: 0.1, y: 0.2, z: 0.3}}]}
+      - {name: imu_default, type: imu, modifiers: [{name: imunoise}]}
+      - {name: clean, type: pose}
+      - {name: clean_imu, type: imu}
+"""
+
+
+@pytest.fixture(scope="module")
+def noisy(tmp_path_factory):
+    """TICKS readings of every sensor of NOISY, as arrays per field."""
+    with simulate(NOISY, tmp_path_factory.mktemp("noisy"), seed=7) as h:
+        h.step()
+        truth = {name: h.data(name) for name in ("r.clean", "r.clean_imu")}
+        samples: dict[str, dict[str, list]] = {}
+        for _ in range(TICKS):
+            h.step()
+            for name in h.sim.by_name:
+                for key, value in h.data(name).items():
+                    samples.setdefault(name, {}).setdefault(key, []).append(value)
+    return truth, {name: {k: np.array(v) for k, v in fields.items()} for name, fields in samples.items()}
+
+
+def check(values: np.ndarray, mean: float, std: float) -> None:
+    """Sample mean within 5 standard errors of `mean`, sample std within 10 % of `std`; std 0: untouched,
+    every value the same (the true one)."""
+    if std == 0:
+        assert np.ptp(values) == 0.0 and values[0] == pytest.approx(mean, abs=1e-9)
+        return
+    assert values.mean() == pytest.approx(mean, abs=5 * std / math.sqrt(len(values)))
+    assert values.std() == pytest.approx(std, rel=0.1)
+
+
+def test_pose_noise_scalar_and_defaults(noisy):
+    truth, data = noisy
+    clean = truth["r.clean"]
+    for field in "xyz":
+        check(data["r.pose"][field], clean[field], 0.1)
+        check(data["r.default"][field], clean[field], 0.05)  # pos_std default 5 cm
+    for field in ("roll", "pitch", "yaw"):
+        check(data["r.pose"][field], clean[field], 0.05)
+        check(data["r.default"][field], clean[field], math.radians(5))  # rot_std default 5 deg
+
+
+def test_pose_noise_per_axis_and_2d(noisy):
+    truth, data = noisy
+    clean = truth["r.clean"]
+    for field, std in (("x", 0.1), ("y", 0.2), ("z", 0.3), ("roll", 0.01), ("pitch", 0.02), ("yaw", 0.03)):
+        check(data["r.axes"][field], clean[field], std)
+    for field, std in (("x", 0.1), ("y", 0.1), ("z", 0.0), ("roll", 0.0), ("pitch", 0.0), ("yaw", 0.05)):
+        check(data["r.flat"][field], clean[field], std)
+
+
+def test_odometry_gps_and_gyroscope_noise(noisy):
+    truth, data = noisy
+    for field in "xyz":
+        check(data["r.odo"][field], 0.0, 0.2)  # odometry starts at 0 wherever the robot is
+    for field in ("yaw", "pitch", "roll"):
+        check(data["r.odo"][field], 0.0, 0.02)
+    for field in ("vx", "vy", "vz", "wx", "wy", "wz"):  # velocities are left alone
+        assert np.ptp(data["r.odo"][field]) == 0.0 and abs(data["r.odo"][field][0]) < 1e-12
+    for field, value in zip("xyz", (1.0, 2.0, 3.0)):
+        check(data["r.gps"][field], value, 0.5)
+    clean = truth["r.clean"]
+    check(data["r.gyro"]["yaw"], clean["yaw"], 0.1)
+    check(data["r.gyro"]["roll"], clean["roll"], 0.0)  # no std given for roll and pitch: no noise
+    check(data["r.gyro"]["pitch"], clean["pitch"], 0.0)
+
+
+def test_imu_noise(noisy):
+    truth, data = noisy
+    clean = truth["r.clean_imu"]
+    accel, rates = data["r.imu"]["linear_acceleration"], data["r.imu"]["angular_velocity"]
+    for axis, std in enumerate((0.1, 0.2, 0.3)):
+        check(accel[:, axis], clean["linear_acceleration"][axis], std)
+        check(rates[:, axis], clean["angular_velocity"][axis], 0.01)
+        check(data["r.imu_default"]["linear_acceleration"][:, axis], clean["linear_acceleration"][axis], 0.5)
+        check(data["r.imu_default"]["angular_velocity"][:, axis], clean["angular_velocity"][axis], 0.5)
+    assert np.all(data["r.imu"]["magnetic_field"] == 0.0)  # not noised
+    # the clean IMU reads gravity in the robot's tilted frame: g (−sin p, sin r cos p, cos r cos p)
+    r, p = 0.1, 0.2
+    assert clean["linear_acceleration"] == pytest.approx(
+        [-9.81 * math.sin(p), 9.81 * math.sin(r) * math.cos(p), 9.81 * math.cos(r) * math.cos(p)], abs=1e-9)
+
+
+def test_noise_values_are_plain_floats(tmp_path):
+    with simulate(NOISY, tmp_path, seed=1) as h:
+        h.step()
+        pose, imu = h.data("r.pose"), h.data("r.imu")
+    assert type(pose["x"]) is float and type(pose["yaw"]) is float
+    assert all(type(v) is float for v in imu["linear_acceleration"])
+
+
+# ---------------------------------------------------------------- seeds
+
+SEEDED = """
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}{seed}}}
+robots:
+  - name: r
+    type: atrv
+    components:
+      - {{name: pose, type: pose, modifiers: [{{name: noise}}]}}
+      - {{name: imu, type: imu, modifiers: [{{name: noise}}]}}
+      - {{name: odo, type: odometry, modifiers: [{{name: odometrynoise, factor_sigma: 0.1}}, {{name: noise}}]}}
+      - {{name: motion, type: motion_vw}}
+"""
+
+
+def record(tmp_path, name: str, seed: int | None = None, env_seed: int | None = None) -> list:
+    text = SEEDED.format(seed=f", seed: {env_seed}" if env_seed is not None else "")
+    out = []
+    with simulate(text, tmp_path, seed=seed, name=name) as h:
+        h.command("r.motion", v=0.5, w=0.2)
+        for _ in range(60):
+            h.step()
+            out.append([h.data(n) for n in ("r.pose", "r.imu", "r.odo")])
+    return out
+
+
+def test_same_seed_same_streams_different_seed_different_streams(tmp_path):
+    first = record(tmp_path, "a", seed=1)
+    assert record(tmp_path, "b", seed=1) == first  # bit-identical: == on floats
+    assert record(tmp_path, "c", env_seed=1) == first  # environment.seed and `morsec run --seed` agree
+    assert record(tmp_path, "d", seed=1, env_seed=2) == first  # the run option wins
+    other = record(tmp_path, "e", seed=2)
+    assert other != first
+    assert other[-1][0]["x"] != first[-1][0]["x"]
+    assert record(tmp_path, "f") != record(tmp_path, "g")  # no seed: fresh entropy each run
+
+
+# ---------------------------------------------------------------- coordinate conventions
+
+X, Y, Z = 120.0, -80.0, 15.0
+ROLL, PITCH, YAW = 0.1, 0.2, 0.3
+
+COORDINATES = f"""
+environment:
+  name: empty
+  time: {{strategy: fixed_step, relative: true}}
+  properties: {{longitude: {LON}, latitude: {LAT}, altitude: {ALT},
+               UTMXOffset: "370000.5", UTMYOffset: 4828000.0, UTMZOffset: 135.0}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [{X}, {Y}, {Z}]
+    rotate: [{ROLL}, {PITCH}, {YAW}]
+    components:
+      - {{name: pose, type: pose}}
+      - {{name: ned, type: pose, modifiers: [{{name: NED}}]}}
+      - {{name: utm, type: pose, modifiers: [{{name: utm}}]}}
+      - {{name: utm_given, type: pose, modifiers: [{{name: utm, x_offset: 10.0}}]}}
+      - {{name: ecef, type: pose, modifiers: [{{name: ecef}}]}}
+      - {{name: geodetic, type: pose, modifiers: [{{name: geodetic}}]}}
+      - {{name: geocentric, type: pose, modifiers: [{{name: geocentric}}]}}
+      - {{name: feet, type: pose, modifiers: [{{name: feet}}]}}
+      - {{name: ned_feet, type: pose, modifiers: [{{name: ned}}, {{name: feet}}]}}
+      - {{name: gps_ned, type: gps, modifiers: [{{name: ned}}]}}
+      - {{name: gps_geodetic, type: gps, modifiers: [{{name: geodetic}}]}}
+      - {{name: gps_raw_ned, type: gps, level: raw, modifiers: [{{name: ned}}]}}
+      - {{name: gyro_ned, type: gyroscope, modifiers: [{{name: ned}}]}}
+"""
+
+
+@pytest.fixture(scope="module")
+def converted(tmp_path_factory):
+    with simulate(COORDINATES, tmp_path_factory.mktemp("coordinates")) as h:
+        h.step()
+        return {name.split(".")[1]: h.data(name) for name in h.sim.by_name}
+
+
+def xyz(data: dict) -> tuple[float, float, float]:
+    return data["x"], data["y"], data["z"]
+
+
+def test_ned_and_feet(converted):
+    assert xyz(converted["pose"]) == pytest.approx((X, Y, Z), abs=1e-9)
+    assert xyz(converted["ned"]) == pytest.approx((Y, X, -Z), abs=1e-9)  # north, east, down
+    assert xyz(converted["gps_ned"]) == pytest.approx((Y, X, -Z), abs=1e-9)
+    assert xyz(converted["feet"]) == pytest.approx((X * FEET, Y * FEET, Z * FEET), rel=1e-12)
+    assert xyz(converted["ned_feet"]) == pytest.approx((Y * FEET, X * FEET, -Z * FEET), rel=1e-12)  # in order
+    assert (converted["ned"]["roll"], converted["ned"]["yaw"]) == (converted["pose"]["roll"], converted["pose"]["yaw"])
+
+
+def test_ned_angles_of_the_gyroscope(converted):
+    """Heading clockwise from north: yaw' = pi/2 - yaw; pitch nose-up positive in NED: -pitch."""
+    gyro = converted["gyro_ned"]
+    assert gyro["yaw"] == pytest.approx(math.pi / 2 - YAW, abs=1e-8)
+    assert gyro["pitch"] == pytest.approx(-PITCH, abs=1e-8)
+    assert gyro["roll"] == pytest.approx(ROLL, abs=1e-8)
+
+
+def test_utm_offsets_from_environment_or_parameters(converted):
+    assert xyz(converted["utm"]) == pytest.approx((X + 370000.5, Y + 4828000.0, Z + 135.0), abs=1e-6)
+    assert xyz(converted["utm_given"]) == pytest.approx((X + 10.0, Y + 4828000.0, Z + 135.0), abs=1e-6)
+
+
+def test_ecef_geodetic_geocentric(converted):
+    ecef = ecef_of_scene(X, Y, Z)
+    assert xyz(converted["ecef"]) == pytest.approx(tuple(ecef), abs=1e-6)
+    lat, lon, alt = geodetic_of(ecef)
+    for name in ("geodetic", "gps_geodetic"):
+        data = converted[name]
+        assert (data["x"], data["y"]) == pytest.approx((lon, lat), abs=1e-10)  # x = longitude, y = latitude
+        assert data["z"] == pytest.approx(alt, abs=1e-5)
+    geocentric = converted["geocentric"]
+    assert geocentric["x"] == pytest.approx(math.degrees(math.atan2(ecef[1], ecef[0])), abs=1e-10)
+    assert geocentric["y"] == pytest.approx(math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))), abs=1e-10)
+    assert geocentric["z"] == pytest.approx(float(np.linalg.norm(ecef)), abs=1e-6)
+    assert geocentric["y"] < lat  # the geocentric latitude is smaller than the geodetic one
+
+
+def test_position_modifier_on_a_level_without_positions(converted):
+    """A GPS at its raw level has no x, y, z: `ned` leaves its data unchanged and it is still sent."""
+    raw = converted["gps_raw_ned"]
+    lat, lon, _ = geodetic_of(ecef_of_scene(X, Y, Z))
+    assert (raw["latitude"], raw["longitude"]) == pytest.approx((lat, lon), abs=1e-9)
+    assert "x" not in raw
+
+
+def send(h, fqn: str, **values) -> None:
+    """What a client's message does to an actuator: replace its data, then run its input modifiers once."""
+    h.command(fqn, **values)
+    comp = h.sim.component(fqn)
+    for modifier in comp.modifiers:
+        modifier.modify(comp.instance.local_data)
+
+
+def test_actuator_inputs_are_converted_back(tmp_path):
+    """Teleport commands given in feet, NED and geodetic coordinates land the robot where they say."""
+    lat, lon, alt = geodetic_of(ecef_of_scene(30.0, 40.0, 5.0))
+    text = f"""
+environment:
+  name: empty
+  time: {{strategy: fixed_step, relative: true}}
+  properties: {{longitude: {LON}, latitude: {LAT}, altitude: {ALT}}}
+robots:
+  - {{name: a, type: fake_robot, components: [{{name: tp, type: teleport, modifiers: [{{name: feet}}]}}]}}
+  - {{name: b, type: fake_robot, components: [{{name: tp, type: teleport, modifiers: [{{name: ned}}]}}]}}
+  - {{name: c, type: fake_robot, components: [{{name: tp, type: teleport, modifiers: [{{name: geodetic}}]}}]}}
+"""
+    with simulate(text, tmp_path) as h:
+        send(h, "a.tp", x=10.0 * FEET, y=-2.0 * FEET, z=1.0 * FEET)
+        send(h, "b.tp", x=5.0, y=3.0, z=-2.0)  # 5 m north, 3 m east, 2 m up
+        send(h, "c.tp", x=lon, y=lat, z=alt)
+        h.step(2)
+        assert h.body_pose("a")[0] == pytest.approx([10.0, -2.0, 1.0], abs=1e-9)
+        assert h.body_pose("b")[0] == pytest.approx([3.0, 5.0, 2.0], abs=1e-9)
+        assert h.body_pose("c")[0] == pytest.approx([30.0, 40.0, 5.0], abs=1e-5)
+
+
+def test_odometry_noise_scale_and_drift(tmp_path):
+    """A helicopter flying straight 1 m/s for 2 s: odometry scaled by `factor`; a heading drift of
+    0.001 rad per tick adds up to 0.12 rad over 120 ticks."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: heli
+    type: rmax
+    translate: [0.0, 0.0, 5.0]
+    components:
+      - {name: odo, type: odometry}
+      - {name: scaled, type: odometry, modifiers: [{name: odometrynoise, factor: 1.2}]}
+      - {name: drifting, type: odometry, modifiers: [{name: odometrynoise, factor: 1.0, gyro_drift: 0.001}]}
+      - {name: motion, type: motion_vw}
+"""
+    with simulate(text, tmp_path, seed=3) as h:
+        h.command("heli.motion", v=1.0, w=0.0)
+        h.step(120)
+        odo, scaled, drifting = h.data("heli.odo"), h.data("heli.scaled"), h.data("heli.drifting")
+    assert odo["x"] == pytest.approx(2.0, abs=0.1)
+    assert scaled["x"] == pytest.approx(1.2 * odo["x"], rel=1e-9)
+    assert drifting["yaw"] - odo["yaw"] == pytest.approx(120 * 0.001, abs=1e-6)
+
+
+# ---------------------------------------------------------------- build-time errors
+
+def build_with(tmp_path, component: str, modifier: str, properties: str = "") -> None:
+    source = tmp_path / "bad.yaml"
+    source.write_text(f"""environment:
+  name: empty{properties}
+robots:
+  - name: r
+    type: fake_robot
+    components:
+      - {{name: c, type: {component}, modifiers: [{modifier}]}}
+""")
+    build_scene(source, tmp_path / "out")
+
+
+@pytest.mark.parametrize(("component", "modifier", "message"), [
+    ("clock", "{name: noise}", "modifiers[0].name: modifier 'noise' does not apply to 'clock' "
+                               "(it applies to: gps, gyroscope, imu, odometry, pose)"),
+    ("imu", "{name: feet}", "modifier 'feet' does not apply to 'imu' (it applies to: destination, gps, pose, "
+                            "teleport, waypoint)"),
+    ("pose", "{name: noise, pos_std: lots}", "modifiers[0].pos_std: modifier 'noise': pos_std: Input should be"),
+    ("imu", "{name: noise, gyro_std: {x: -}}", "modifiers[0].gyro_std"),
+    ("pose", "{name: noise, pos_sdt: 0.1}", "modifiers[0].pos_sdt: modifier 'noise': pos_sdt: Extra inputs are "
+                                            "not permitted"),
+    ("pose", "{name: ned, factor: 2}", "modifiers[0].factor: modifier 'ned': factor: Extra inputs"),
+    ("pose", "{name: ecef}", "modifier 'ecef' needs the environment properties longitude, latitude and altitude "
+                             "(missing: longitude, latitude, altitude)"),
+    ("pose", "{name: nosie}", "unknown modifier 'nosie'; did you mean"),
+])
+def test_bad_modifiers_are_build_errors(tmp_path, component, modifier, message):
+    with pytest.raises(SceneError) as err:
+        build_with(tmp_path, component, modifier)
+    text = str(err.value)
+    assert text.startswith(f"{tmp_path / 'bad.yaml'}:7:")  # file:line:column
+    assert "robots[0].components[0].modifiers[0]" in text
+    assert message in text
+
+
+def test_geodetic_modifier_builds_with_environment_properties(tmp_path):
+    build_with(tmp_path, "pose", "{name: geocentric}", f"\n  properties: {{longitude: {LON}, latitude: {LAT}, "
+                                                       f"altitude: {ALT}}}")
+    assert (tmp_path / "out" / "manifest.json").is_file()

@@ -1,0 +1,207 @@
+"""Time strategies, lockstep, relative time, and how `morsec run` starts and ends (reference §5)."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import signal
+import socket
+import subprocess
+import time
+
+import pytest
+
+from runtime_helpers import (MORSEC, LineSocket, Morsec, build_folder, free_port, occupy, pose_sensor, robot,
+                             scene, scene_file, start_all, stop_all, wait_until)
+
+DT = 1.0 / 60
+
+
+def refused(host: str, port: int) -> bool:
+    try:
+        socket.create_connection((host, port), timeout=5).close()
+    except ConnectionRefusedError:
+        return True
+    return False
+
+
+@pytest.fixture(scope="module")
+def sims(tmp_path_factory, launched_failures):
+    """The long-running simulations of this module, started together (while the failures run)."""
+    tmp = tmp_path_factory.mktemp("time")
+    sync_port = free_port()
+    fast = Morsec(scene_file(tmp, scene(strategy="best_effort"), "fast"), tmp, prebuild=False,  # builds, then runs
+                  args=["--time-strategy", "fixed_step", "--duration", "30"])
+    scaled = Morsec(scene_file(tmp, scene(strategy="best_effort"), "scaled"), tmp, args=["--time-scale", "2"])
+    relative = Morsec(scene_file(tmp, scene(environment={"time": {"relative": True}}, strategy="best_effort"),
+                                 "relative"), tmp, host="127.0.0.2", args=["--bind", "127.0.0.2"])
+    lockstep = Morsec(scene_file(tmp, scene(strategy="fixed_step", environment={
+        "stream_managers": {"socket": {"time_sync": True, "sync_port": sync_port}}}), "lockstep"), tmp)
+    lockstep.expected_sync_port = sync_port
+    all_sims = {"fast": fast, "scaled": scaled, "relative": relative, "lockstep": lockstep}
+    try:
+        start_all(*all_sims.values())
+        yield all_sims
+    finally:
+        stop_all(*all_sims.values())
+
+
+def test_fixed_step_runs_faster_than_real_time_and_duration_ends_it(sims):
+    fast = sims["fast"]
+    assert fast.wait(60) == 0, fast.output()
+    wall = fast.seen_at["EXITING SIMULATION"] - fast.seen_at["SCENE INITIALIZED"]
+    assert wall < 15.0, f"30 simulated seconds took {wall:.1f} s"  # at least twice real time, even on a busy host
+
+
+def test_best_effort_follows_the_wall_clock_times_the_scale(sims):
+    scaled = sims["scaled"]
+    with scaled.client() as client:
+        assert client.ok("time", "mode") == "Best Effort"
+        w0 = time.monotonic()
+        client.ok("time", "sleep", 2.0, timeout=20)
+        at_two = time.monotonic() - w0
+        assert client.ok("time", "set_time_scale", 1.0) is True
+        w0 = time.monotonic()
+        client.ok("time", "sleep", 2.0, timeout=20)
+        at_one = time.monotonic() - w0
+    assert 0.8 <= at_two <= 1.6, f"2 simulated s at scale 2 took {at_two:.2f} s"
+    assert 1.8 <= at_one <= 2.8, f"2 simulated s at scale 1 took {at_one:.2f} s"
+
+
+def test_quit_service_exits_0_and_closes_the_ports(sims):
+    scaled = sims["scaled"]
+    ports = [scaled.service_port] + [p for _, p in scaled.streams.values()]
+    assert scaled.request("q simulation quit") == "q SUCCESS"
+    assert scaled.wait(30) == 0, scaled.output()
+    assert "EXITING SIMULATION" in scaled.stdout
+    assert all(refused("127.0.0.1", p) for p in ports)
+
+
+def test_relative_time_and_bind(sims):
+    sim = sims["relative"]
+    assert all("127.0.0.2:" in line for line in sim.stdout if line.startswith("  ") and "socket" in line)
+    with sim.client() as client:
+        now = client.ok("time", "now")
+    assert 0 < now < 60  # from 0, not the Unix epoch
+    with sim.stream("robot.pose") as pose:
+        assert 0 < pose.json()["timestamp"] < 60
+    assert refused("127.0.0.1", sim.service_port)  # listening on the --bind address only
+
+
+def test_sigint_exits_0(sims):
+    sim = sims["relative"]
+    sim.signal(signal.SIGINT)
+    assert sim.wait(30) == 0, sim.output()
+    assert "EXITING SIMULATION" in sim.stdout
+    assert not [line for line in sim.stderr if "Traceback" in line]
+
+
+def test_lockstep(sims):
+    sim = sims["lockstep"]
+    assert sim.sync_port == sim.expected_sync_port
+    with sim.client() as client:
+        t = client.ok("time", "now")
+        wait_until(lambda: client.ok("time", "now") > t, message="free running before a sync client")
+        with LineSocket(sim.sync_port) as sync:
+            time.sleep(0.3)  # accepted: the loop now waits for steps
+            t0 = client.ok("time", "now")
+            time.sleep(0.3)
+            assert client.ok("time", "now") == t0, "time advanced without a step"
+            for k in (5, 1, 3):
+                sync.send("step\n" * k)  # k lines in one write: k frames
+                target = t0 + k * DT
+                wait_until(lambda: client.ok("time", "now") >= target - 1e-9, timeout=10, message=f"{k} steps")
+                time.sleep(0.2)
+                now = client.ok("time", "now")
+                assert now == pytest.approx(target, abs=1e-5), (k, now - t0)  # epoch-based: ~2e-7 resolution
+                t0 = now
+            with sim.stream("robot.pose") as pose:  # sensors publish on steps only
+                sync.send("\n\n")
+                stamps = [pose.json()["timestamp"], pose.json()["timestamp"]]
+                assert stamps[1] - stamps[0] == pytest.approx(DT, abs=1e-5)
+                with pytest.raises(TimeoutError):
+                    pose.line(timeout=0.3)
+            t0 = client.ok("time", "now")
+        wait_until(lambda: client.ok("time", "now") > t0 + 0.5, timeout=10, message="free running after disconnect")
+
+
+def test_sigterm_exits_0(sims):
+    sim = sims["lockstep"]
+    sim.signal(signal.SIGTERM)
+    assert sim.wait(30) == 0, sim.output()
+    assert "EXITING SIMULATION" in sim.stdout
+    assert not [line for line in sim.stderr if "Traceback" in line]
+
+
+# --------------------------------------------------------------------------------------- failures
+@pytest.fixture(scope="module")
+def launched_failures(tmp_path_factory):
+    """`morsec run` of things that cannot run, launched side by side: ({case: Popen}, held sockets, paths)."""
+    tmp = tmp_path_factory.mktemp("failures")
+    built = build_folder(scene_file(tmp, scene(), "good"), tmp / "good")
+    garbage = tmp / "garbage"
+    garbage.mkdir()
+    (garbage / "manifest.json").write_text("not json")
+    old = tmp / "old"
+    old.mkdir()
+    (old / "manifest.json").write_text("{}")
+    (old / "middleware.json").write_text("{}")
+    invalid = scene_file(tmp, scene(robot("robot", pose_sensor(translte=[0, 0, 0]))), "invalid")
+    cases = {
+        "ports busy": [str(MORSEC), "run", str(built), "--duration", "1"],
+        "garbage build": [str(MORSEC), "run", str(garbage), "--duration", "1"],
+        "old build": [str(MORSEC), "run", str(old), "--duration", "1"],
+        "invalid scene": [str(MORSEC), "run", str(invalid), "--duration", "1"],
+    }
+    held = []
+    for port in range(4000, 4011):  # every service port morsec would try
+        with contextlib.suppress(OSError):
+            held.append(occupy(port))
+    procs = {case: subprocess.Popen(command, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+             for case, command in cases.items()}
+    try:
+        yield procs, held, {"invalid scene": invalid}
+    finally:
+        for sock in held:
+            sock.close()
+        for proc in procs.values():
+            if proc.poll() is None:
+                proc.kill()
+            proc.communicate()
+
+
+@pytest.fixture(scope="module")
+def failures(launched_failures):
+    """{case: CompletedProcess} of the launched failures."""
+    procs, held, paths = launched_failures
+    results = {}
+    for case, proc in procs.items():
+        out, err = proc.communicate(timeout=120)
+        results[case] = subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+        results[case].path = paths.get(case)
+    for sock in held:
+        sock.close()
+    return results
+
+
+def one_line_error(result, code: int) -> str:
+    assert result.returncode == code, (result.returncode, result.stdout, result.stderr)
+    lines = [line for line in result.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
+    assert "Traceback" not in result.stderr and "SCENE INITIALIZED" not in result.stdout
+    return lines[0]
+
+
+def test_all_service_ports_busy_exits_1(failures):
+    assert "cannot open the simulation's sockets" in one_line_error(failures["ports busy"], 1)
+
+
+@pytest.mark.parametrize("case", ["garbage build", "old build"])
+def test_bad_build_folders_exit_1(failures, case):
+    assert "not a usable build folder" in one_line_error(failures[case], 1)
+
+
+def test_invalid_scene_exits_2(failures):
+    result = failures["invalid scene"]
+    line = one_line_error(result, 2)
+    assert str(result.path) in line and "translte" in line and "translate" in line  # where, what, a suggestion
