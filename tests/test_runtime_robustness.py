@@ -103,6 +103,17 @@ def test_huge_request_lines(sim, client):
     stepping(sim)
 
 
+def test_a_flood_of_requests_does_not_stall_the_others(sim):
+    """200 000 bad requests in 400 kB from a client that never reads its answers: the others are served
+    within seconds (handling is linear in what arrives, answers queue without quadratic copying)."""
+    with socket.create_connection((HOST, sim.service_port), timeout=5) as flooder, sim.client(timeout=30) as other:
+        flooder.sendall(b"a\n" * 200_000 + b"\n" * 1_000_000)
+        start = time.monotonic()
+        assert other.ok("time", "mode") == "Best Effort"
+        assert time.monotonic() - start < 8.0
+    stepping(sim)
+
+
 def test_binary_garbage_everywhere(sim):
     rng = random.Random(7)
     garbage = bytes(rng.getrandbits(8) for _ in range(200_000))

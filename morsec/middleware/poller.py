@@ -10,6 +10,7 @@ import socket
 log = logging.getLogger("morsec.middleware")
 
 READ_CHUNK = 65536
+READ_LIMIT = 1024 * 1024  # bytes read from one client per poll: a flood cannot stall a frame
 
 
 class Poller:
@@ -73,16 +74,18 @@ class Connection:
             pass
         self.sock = sock
         self.inbuf = b""
-        self.outbuf = b""
+        self.outbuf = bytearray()  # appended to and consumed in place: no quadratic copying
         self.closed = False
 
     def fileno(self) -> int:
         return self.sock.fileno()
 
     def receive(self) -> bytes | None:
-        """New bytes, b'' when nothing is there, None when the peer closed or failed."""
+        """New bytes (at most about READ_LIMIT; the rest waits for the next poll), b'' when nothing is
+        there, None when the peer closed or failed."""
         chunks = []
-        while True:
+        size = 0
+        while size < READ_LIMIT:
             try:
                 data = self.sock.recv(READ_CHUNK)
             except (BlockingIOError, InterruptedError):
@@ -92,6 +95,7 @@ class Connection:
             if not data:
                 return None if not chunks else b"".join(chunks)
             chunks.append(data)
+            size += len(data)
             if len(data) < READ_CHUNK:
                 break
         return b"".join(chunks)
@@ -114,7 +118,7 @@ class Connection:
             except OSError:
                 self.closed = True
                 return False
-            self.outbuf = self.outbuf[sent:]
+            del self.outbuf[:sent]
         return True
 
     def close(self) -> None:

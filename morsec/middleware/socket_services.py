@@ -50,10 +50,15 @@ class ServiceServer:
             self._drop(conn)
             return
         conn.inbuf += data
-        while b"\n" in conn.inbuf:
-            line, _, conn.inbuf = conn.inbuf.partition(b"\n")
+        *lines, conn.inbuf = conn.inbuf.split(b"\n")  # one pass, however many lines arrived
+        for line in lines:
             if conn in self.discarding:
                 self.discarding.discard(conn)
+                continue
+            if len(line) > MAX_REQUEST_LINE:  # refused whether it came in one read or in many
+                request_id = _first_token(line)
+                if request_id:
+                    self._reply(conn, request_id, FAILED, f"request line longer than {MAX_REQUEST_LINE} bytes")
                 continue
             self._request(conn, line)
             if conn.closed:

@@ -84,21 +84,21 @@ def test_noocclusion_reports_hidden_objects(tmp_path):
 def test_bounding_box_meeting_the_frustum_is_enough(tmp_path):
     """A 1 m box centred at (3, 1.6): its centre is outside the view (1.6 / 3 > 0.457) but its near left
     corner (2.5, 1.1) is inside (1.1 / 2.5 = 0.44): seen. At (3, 2.5) it spans y 2.0..3.0, outside the
-    view (at most 0.457 * 3.5 = 1.6 at its far face): not seen. Narrowing the view (cam_focal 50: 0.32)
-    hides the first one too."""
+    view (at most 0.457 * 3.5 = 1.6 at its far face): not seen. Narrowing the view (cam_focal 60: 16 / 60 =
+    0.267, at most 0.93 m at the far face) hides the first one too."""
     objects = [box("edge", (3.0, 1.6, 1.0), size=(1.0, 1.0, 1.0)), box("out", (3.0, -2.5, 1.0), size=(1.0, 1.0, 1.0))]
     with simulate(scene(objects), tmp_path) as sim:
         sim.step(3)
         assert set(seen(sim)) == {"edge"}
-    narrow = "{name: sem, type: semantic_camera, properties: {cam_focal: 50.0}}"
-    with simulate(scene(objects, narrow), tmp_path / "narrow") as sim:
+    narrow = "{name: sem, type: semantic_camera, properties: {cam_focal: 60.0}}"
+    with simulate(scene(objects, narrow), tmp_path, name="narrow") as sim:
         sim.step(3)
         assert seen(sim) == {}
 
 
 def test_near_and_far_clip(tmp_path):
     camera = "{name: sem, type: semantic_camera, properties: {cam_near: 2.5, cam_far: 4.0}}"
-    objects = [box("close", (1.0, 0.0, 1.0)), box("mid", (3.0, 0.0, 1.0)), box("beyond", (5.0, 0.6, 1.0))]
+    objects = [box("close", (1.5, 0.5, 1.0)), box("mid", (3.0, 0.0, 1.0)), box("beyond", (5.0, 0.6, 1.0))]
     with simulate(scene(objects, camera), tmp_path) as sim:
         sim.step(3)
         assert set(seen(sim)) == {"mid"}
@@ -132,7 +132,7 @@ def test_tag_selects_by_property_or_type(tmp_path):
 
 def test_robots_are_tracked_and_the_own_robot_does_not_hide_anything(tmp_path):
     """A camera inside its own robot's chassis (an ATRV) still sees what is ahead; another tagged robot is
-    reported like an object."""
+    reported like an object; the robot carrying the camera is not reported."""
     text = f"""environment: {{name: empty, time: {{strategy: fixed_step}}}}
 robots:
   - name: r

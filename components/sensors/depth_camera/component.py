@@ -44,11 +44,12 @@ class DepthCamera(VideoCamera):
         p, v = self.properties, self.view
         self.rows = parse_keep_list(p.keep_list, v.height)
         self.rays = pixel_rays(v.width, v.height, v.fx, self.rows, p.Vertical_Flip)
+        self._rows = None if self.rows == list(range(v.height)) else self.rows  # None: every row, no copy
         self.local_data["points"] = np.zeros((0, 3), dtype=np.float32)
 
     def grab(self) -> None:
         p = self.properties
-        points = depth_points(self.view.depth(p), self.rows, self.rays, p.cam_far, p.keep_resolution)
+        points = depth_points(self.view.depth(p), self._rows, self.rays, p.cam_far, p.keep_resolution)
         self.local_data["points"] = points
         self.local_data["nb_points"] = int(len(points))
 

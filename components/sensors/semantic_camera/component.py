@@ -21,8 +21,8 @@ class SemanticCamera(Sensor):
     `tag` (default 'Object') is true, or whose `Type` equals `tag`. An object is seen when its bounding
     box (the boxes of its geoms) meets the camera's view frustum (field of view from cam_width,
     cam_height, cam_focal / cam_fov; depth from cam_near to cam_far) and — unless `noocclusion` — a ray
-    from the camera to the object's origin hits that object first (the robot carrying the camera does not
-    block it). Each seen object: `{name: its Label or name, description, type, position: [x, y, z],
+    from the camera to the centre of that bounding box hits that object first. The robot carrying the camera neither
+    blocks the view nor is reported. Each seen object: `{name: its Label or name, description, type, position: [x, y, z],
     orientation: {x, y, z, w}}`, in the world frame, or in the camera's frame (x forward, y left, z up)
     when `relative`. The camera looks along the component's +x. Nothing is rendered."""
 
@@ -92,18 +92,15 @@ class SemanticCamera(Sensor):
         rot = d.geom_xmat[geoms].reshape(-1, 3, 3)
         return (np.einsum("gij,gkj->gki", rot, local) + d.geom_xpos[geoms][:, None, :]).reshape(-1, 3)
 
-    def in_frustum(self, obj, origin: np.ndarray, rot: np.ndarray, planes: np.ndarray) -> bool:
-        geoms = self._geoms.get(obj.name)
-        if geoms is None or len(geoms) == 0:
-            return False
-        local = (self._corners(geoms) - origin) @ rot  # camera frame
+    def in_frustum(self, corners: np.ndarray, origin: np.ndarray, rot: np.ndarray, planes: np.ndarray) -> bool:
+        local = (corners - origin) @ rot  # camera frame
         outside = (local @ planes[:, :3].T + planes[:, 3]) < 0.0  # corners x planes
         return not outside.all(axis=0).any()  # outside only if every corner is outside one same plane
 
-    def unoccluded(self, obj, origin: np.ndarray) -> bool:
+    def unoccluded(self, obj, origin: np.ndarray, target: np.ndarray) -> bool:
+        """The first thing a ray from the camera to `target` meets belongs to the object."""
         m, d = self.sim.model, self.sim.data
-        target = d.xpos[obj.body_id]
-        hide = len(self._own) and obj.body_id != self._root
+        hide = len(self._own) > 0
         if hide:
             m.geom_group[self._own] = HIDDEN_GROUP
         try:
@@ -123,9 +120,14 @@ class SemanticCamera(Sensor):
         planes = self._frustum_planes()
         seen = []
         for obj in self.sim.objects_with(p.tag):
-            if obj.body_id == self.body_id or not self.in_frustum(obj, origin, rot, planes):
+            geoms = self._geoms.get(obj.name)
+            if obj.body_id == self._root or geoms is None or len(geoms) == 0:
                 continue
-            if not p.noocclusion and not self.unoccluded(obj, origin):
+            corners = self._corners(geoms)
+            if not self.in_frustum(corners, origin, rot, planes):
+                continue
+            centre = (corners.min(axis=0) + corners.max(axis=0)) / 2.0  # of its world bounding box
+            if not p.noocclusion and not self.unoccluded(obj, origin, centre):
                 continue
             pos = d.xpos[obj.body_id]
             orient = d.xmat[obj.body_id].reshape(3, 3)
