@@ -347,7 +347,10 @@ def depth_points(depth: np.ndarray, rows: list[int] | None, rays: np.ndarray, fa
 
 
 def b64(array) -> str:
-    """Base64 text of an array's bytes (row-major, native little-endian on every platform MuJoCo runs on)."""
+    """Base64 text of an array's bytes (row-major, native little-endian on every platform MuJoCo runs on);
+    "" before the first picture."""
+    if array is None:
+        return ""
     if isinstance(array, (bytes, bytearray)):
         return base64.b64encode(array).decode("ascii")
     return base64.b64encode(np.ascontiguousarray(array).tobytes()).decode("ascii")

@@ -110,13 +110,19 @@ def run(
 @app.command()
 def docs(
     out: Annotated[Path, typer.Option("-o", "--out", help="docs folder to write the generated pages into")] = Path("docs"),
+    pictures: Annotated[bool, typer.Option(help="also render the gallery's pictures (slow: one scene each)")] = False,
 ) -> None:
-    """Regenerate the reference pages (scene-format.md, components.md) from the models and the catalogue."""
+    """Regenerate the reference pages (scene-format.md, components.md, the component gallery) from the
+    models and the catalogue; with --pictures, the gallery's pictures too."""
     from morsec.catalogue import load_catalogue
     from morsec.docsgen import write_docs
     try:
-        for path in write_docs(out, load_catalogue()):
-            typer.echo(f"wrote {path}")
+        cat = load_catalogue()
+        written = write_docs(out, cat)
+        if pictures:
+            from morsec.gallery import render_pictures
+            written += render_pictures(cat, out)
+        typer.echo(f"wrote {len(written)} files in {out}")
     except MorsecError as err:
         fail(err)
     except OSError as err:
@@ -146,18 +152,21 @@ def render(
 def components(name: Annotated[Optional[str], typer.Argument(help="a component id or builder class name")] = None) -> None:
     """List the catalogue (built-in and this project's components), or describe one component."""
     from morsec.catalogue import load_catalogue
-    from morsec.describe import catalogue_listing, component_markdown
+    from morsec.describe import catalogue_listing
+    from morsec.docsgen import component_section
     from morsec.errors import did_you_mean
+    kinds = ("sensors", "actuators", "robots", "environments", "props")
     try:
         cat = load_catalogue()
         if name is None:
             typer.echo(catalogue_listing(cat))
             return
-        for kind in ("sensors", "actuators", "robots", "environments", "props"):
+        for kind in kinds:
             if cat.resolve(kind, name):
-                typer.echo(component_markdown(cat.get(kind, name)))
+                cls = cat.get(kind, name)
+                typer.echo(f"{cls.short_descr}\n{component_section(kind, cls, None)}")
                 return
-        every = [n for kind in ("sensors", "actuators", "robots", "environments", "props") for n in cat.names(kind)]
+        every = [n for kind in kinds for n in cat.names(kind)]
         raise MorsecError(f"no component {name!r} in the catalogue{did_you_mean(name, every)}")
     except MorsecError as err:
         fail(err)

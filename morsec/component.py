@@ -111,6 +111,9 @@ class Device(Component):
     data: ClassVar[tuple[DataField, ...]] = ()
     levels: ClassVar[tuple[Level, ...]] = ()
     exportable: ClassVar[bool] = True  # False: no stream (keyboard, drag)
+    # robot class attributes this component reads (e.g. motion_vw_diff: wheel_radius, wheel_track, ...):
+    # checked at build time, so mounting it on a robot without them is a clear scene error
+    robot_requires: ClassVar[tuple[str, ...]] = ()
 
     @classmethod
     def default_level(cls) -> str | None:

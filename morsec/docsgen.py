@@ -321,7 +321,7 @@ def components_page(cat: Catalogue, out_dir: Path | None = None) -> str:
                 row += f" {_num(cls.frequency)} | {levels} |"
             out.append(row + "\n")
         for cls in classes:
-            out.append(_component_section(kind, cls, out_dir))
+            out.append(component_section(kind, cls, out_dir))
     return "".join(out)
 
 
@@ -329,7 +329,7 @@ def _anchor(kind: str, cid: str) -> str:
     return f"{kind}-{cid}".replace("/", "-").replace("_", "-").lower()
 
 
-def _component_section(kind: str, cls, out_dir: Path | None) -> str:
+def component_section(kind: str, cls, out_dir: Path | None) -> str:
     out = [f"\n<a id=\"{_anchor(kind, cls.id)}\"></a>\n\n### `{cls.id}` ({KINDS[kind].kind})\n\n"]
     doc = " ".join(cls.doc().split())
     if doc:
@@ -341,6 +341,9 @@ def _component_section(kind: str, cls, out_dir: Path | None) -> str:
         services = list(cls.services())
         if services:
             facts.append("services " + ", ".join(f"`{s}`" for s in services))
+    if out_dir is not None:
+        from morsec.gallery import page_path
+        facts.append(f"[gallery page]({page_path(kind, cls.id)})")
     readme = cls.folder / "README.md" if cls.folder is not None else None
     if out_dir is not None and readme is not None and readme.is_file():
         link = Path(os.path.relpath(readme.resolve(), Path(out_dir).resolve())).as_posix()
@@ -385,8 +388,12 @@ def _short(value: Any) -> str:
 # ---------------------------------------------------------------- writing
 
 def generate(cat: Catalogue, out_dir: Path | None = None) -> dict[str, str]:
-    """{page name: text} for every generated page; links to component READMEs are relative to `out_dir`."""
-    return {"scene-format.md": scene_format_page(cat), "components.md": components_page(cat, out_dir)}
+    """{page path: text} for every generated page; links to component READMEs are relative to `out_dir`.
+    The component gallery (components/<kind>/<id>.md) is generated with them."""
+    from morsec.gallery import component_pages
+    pages = {"scene-format.md": scene_format_page(cat), "components.md": components_page(cat, out_dir)}
+    pages.update(component_pages(cat, lambda kind, cls: component_section(kind, cls, None)))
+    return pages
 
 
 def write_docs(out_dir: Path, cat: Catalogue) -> list[Path]:
@@ -395,6 +402,7 @@ def write_docs(out_dir: Path, cat: Catalogue) -> list[Path]:
     written = []
     for name, text in generate(cat, out_dir).items():
         path = out_dir / name
+        path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text, encoding="utf-8")
         written.append(path)
     return written

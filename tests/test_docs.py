@@ -28,6 +28,23 @@ def fresh() -> dict[str, str]:
     return generate(load_catalogue(ROOT), DOCS)
 
 
+def test_gallery_pages_are_fresh_and_have_their_pictures(fresh):
+    """docs/components/<kind>/<id>.md for every catalogue component, each with its rendered picture."""
+    gallery = {page for page in fresh if page.startswith("components/")}
+    cat = load_catalogue(ROOT)
+    assert len(gallery) == 1 + sum(len(cat.ids(kind)) for kind in ("robots", "sensors", "actuators",
+                                                                   "environments", "props"))
+    stale = [page for page in sorted(gallery) if not (DOCS / page).is_file()
+             or (DOCS / page).read_text(encoding="utf-8") != fresh[page]]
+    assert not stale, f"gallery pages {stale[:5]} are stale: run `morsec docs -o docs --pictures`"
+    for page in gallery:
+        for image in re.findall(r"!\[[^]]*\]\(([^)]+\.png)\)", fresh[page]):
+            assert ((DOCS / page).parent / image).resolve().is_file(), f"{page}: missing picture {image}: " \
+                "run `morsec docs -o docs --pictures`"
+    extra = {str(p.relative_to(DOCS)) for p in (DOCS / "components").rglob("*.md")} - gallery
+    assert not extra, f"gallery pages of components that no longer exist: {sorted(extra)}"
+
+
 @pytest.mark.parametrize("page", GENERATED_PAGES)
 def test_generated_page_is_fresh(fresh, page):
     path = DOCS / page
@@ -41,9 +58,9 @@ def test_morsec_docs_writes_the_generated_pages(tmp_path):
     result = subprocess.run([sys.executable, "-c", "from morsec.cli import main; main()", "docs", "-o", str(out)],
                             cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
-    assert sorted(p.name for p in out.iterdir()) == sorted(GENERATED_PAGES)
     expected = generate(load_catalogue(ROOT), out)
-    for page in GENERATED_PAGES:
+    assert sorted(str(p.relative_to(out)) for p in out.rglob("*.md")) == sorted(expected)
+    for page in expected:
         assert (out / page).read_text(encoding="utf-8") == expected[page]
 
 

@@ -52,6 +52,7 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     env_properties = scene.environment.properties
     for r, robot in enumerate(scene.robots):
         _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail, env_properties)
+        _check_robot_requirements(robot, ("robots", r), cat, fail)
 
     multinode = scene.environment.multinode
     if multinode is not None:
@@ -92,6 +93,26 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
             _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties)
         _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
                           env_properties)
+
+
+def _check_robot_requirements(robot, path: tuple, cat: Catalogue, fail) -> None:
+    """A component that reads robot class attributes (wheel joints, steering) needs a robot declaring them."""
+    robot_cls = cat.get("robots", robot.type)
+    devices = cat.devices()
+
+    def visit(components, parent_path):
+        for i, comp in enumerate(components):
+            needs = devices[comp.type].robot_requires
+            missing = [a for a in needs if not hasattr(robot_cls, a)]
+            if missing:
+                fitting = [rid for rid, rc in sorted(cat.by_kind.get("robots", {}).items())
+                           if all(hasattr(rc, a) for a in needs)]
+                fail(parent_path + ("components", i, "type"),
+                     f"{comp.type!r} needs a robot declaring {', '.join(needs)}; robot type {robot.type!r} does not"
+                     + (f" (these do: {', '.join(fitting)})" if fitting else ""))
+            visit(comp.components, parent_path + ("components", i))
+
+    visit(robot.components, path)
 
 
 def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict) -> None:

@@ -288,3 +288,16 @@ def test_quadrotor_dynamic_control_declares_morse_properties():
     assert cls.Properties().model_dump() == {"ThrustFactor": 9.169e-6, "DragFactor": 2.4e-7, "Lever": 0.18,
                                              "Configuration": "+"}
     assert [(f.name, f.default) for f in cls.data] == [("engines", [0.0, 0.0, 0.0, 0.0])]
+
+
+def test_wheel_actuator_on_a_robot_without_wheels_is_a_scene_error(tmp_path):
+    from morsec.compiler.build import build_scene
+    from morsec.errors import SceneError
+    source = tmp_path / "s.yaml"
+    source.write_text("robots:\n  - name: r\n    type: atrv\n    components:\n      - {name: m, type: motion_vw_diff}\n")
+    with pytest.raises(SceneError) as err:
+        build_scene(source, tmp_path / "b")
+    assert str(err.value) == (f"{source}:5:25: robots[0].components[0].type: 'motion_vw_diff' needs a robot declaring "
+                              "wheel_radius, wheel_track, left_wheel_joints, right_wheel_joints; robot type 'atrv' "
+                              "does not (these do: pioneer3dx, segwayrmp400)")
+    assert not (tmp_path / "b").exists()

@@ -18,6 +18,7 @@ class MotionVWDiff(Actuator):
     short_descr = "Forward speed and yaw rate applied through the wheels of a differential robot"
     builder_name = "MotionVWDiff"
     frequency = 60.0
+    robot_requires = ("wheel_radius", "wheel_track", "left_wheel_joints", "right_wheel_joints")
 
     class Properties(ComponentProperties):
         pass

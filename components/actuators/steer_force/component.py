@@ -23,6 +23,8 @@ class SteerForce(Actuator):
     builder_name = "SteerForce"
     frequency = 60.0
 
+    robot_requires = ("steering_joints", "drive_wheel_joints", "wheel_radius")
+
     class Properties(ComponentProperties):
         pass
 

@@ -1,3 +1,5 @@
+from typing import ClassVar
+
 from pydantic import Field
 
 from morsec.component import Robot, RobotProperties
@@ -13,6 +15,13 @@ class Pioneer3DX(Robot):
     builder_name = "Pioneer3DX"
     xacro = "robot.urdf.xacro"
     spawn_height = 0.0975
+    # what motion_vw_diff reads (see its README)
+    wheel_radius: ClassVar[float] = 0.0975
+    wheel_track: ClassVar[float] = 0.33
+    left_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_left_joint",)
+    right_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_right_joint",)
+    wheel_kv: ClassVar[float] = 10.0
+    wheel_max_torque: ClassVar[float] = 10.0
 
     class Properties(RobotProperties):
         GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
@@ -23,8 +32,9 @@ class Pioneer3DX(Robot):
         WheelFLName: str = Field("Wheel_L", description="link name of the left drive wheel")
         WheelFRName: str = Field("Wheel_R", description="link name of the right drive wheel")
         CasterWheelName: str = Field("CasterWheel", description="link name of the rear caster wheel")
-        FixTurningSpeed: float = Field(0.52, description="MORSE PhysicsDifferentialRobot: corrects the "
-                                       "turning speed of wheel-driven motion (0: no correction)")
+        FixTurningSpeed: float = Field(0.0, description="MORSE PhysicsDifferentialRobot: replaces the wheel "
+                                       "track in the wheel-speed formula (0: the real track). MORSE's 0.52 "
+                                       "corrected Bullet's wheels; on MuJoCo the real track tracks w")
 
 
 COMPONENT = Pioneer3DX

@@ -43,10 +43,10 @@ class SegwayRMP400(Robot):
         WheelFRName: str = Field("wheel2", description="link name of the front right wheel")
         WheelRLName: str = Field("wheel3", description="link name of the rear left wheel")
         WheelRRName: str = Field("wheel4", description="link name of the rear right wheel")
-        FixTurningSpeed: float = Field(1.16, description="MORSE PhysicsDifferentialRobot: the distance "
-                                       "between the wheels used to compute wheel speeds from (v, w), "
-                                       "compensating for the wheels' slip when skid-steering (0: the real "
-                                       "track, 0.62 m)")
+        FixTurningSpeed: float = Field(1.5, description="MORSE PhysicsDifferentialRobot: replaces the wheel "
+                                       "track in the wheel-speed formula (0: the real track). 1.5 makes this "
+                                       "skid-steered robot turn at the commanded w on MuJoCo (its wheels slip "
+                                       "sideways when turning); MORSE's 1.16 was tuned for Bullet")
 
 
 COMPONENT = SegwayRMP400

@@ -30,7 +30,7 @@ class DepthCamera(VideoCamera):
                                       "something")
 
     data = (
-        DataField("points", b"", "float32 points",
+        DataField("points", None, "float32 points",
                   "nb_points x 3 float32: x, y, z of each point in the camera's optical frame (x right, y down, "
                   "z forward), m, row by row (kept rows in keep_list order), left to right; on the wire base64 "
                   "of its nb_points * 12 bytes"),

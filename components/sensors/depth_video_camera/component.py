@@ -19,7 +19,7 @@ class DepthVideoCamera(VideoCamera):
     Properties = DepthCameraProperties
 
     data = (
-        DataField("image", b"", "float32 depth image",
+        DataField("image", None, "float32 depth image",
                   "cam_height x cam_width float32 depth along the optical axis, m (cam_far: nothing seen), first "
                   "row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height * 4 "
                   "bytes"),

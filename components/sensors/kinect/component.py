@@ -1,6 +1,6 @@
 """MORSE's Kinect: an RGB camera and a depth camera side by side, grabbed together."""
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from morsec.camera import CameraProperties, CameraSensor, CameraView, b64
 from morsec.component import DataField
@@ -30,10 +30,16 @@ class Kinect(CameraSensor):
         depth_far: float = Field(20.0, gt=0, description="far clipping distance of the depth camera, m (the depth "
                                  "of pixels that saw nothing)")
 
+        @model_validator(mode="after")
+        def _depth_clip_planes(self):
+            if self.depth_far <= self.depth_near:
+                raise ValueError(f"depth_far ({self.depth_far}) must be larger than depth_near ({self.depth_near})")
+            return self
+
     data = (
-        DataField("rgb", {"image": b"", "intrinsic_matrix": IDENTITY}, "video camera data",
+        DataField("rgb", {"image": None, "intrinsic_matrix": IDENTITY}, "video camera data",
                   "the RGB camera: image (cam_height x cam_width x 4 uint8 RGBA) and intrinsic_matrix"),
-        DataField("depth", {"image": b"", "intrinsic_matrix": IDENTITY}, "depth camera data",
+        DataField("depth", {"image": None, "intrinsic_matrix": IDENTITY}, "depth camera data",
                   "the depth camera: image (cam_height x cam_width float32, m along the optical axis; depth_far "
                   "where nothing was seen) and intrinsic_matrix"),
     )
@@ -41,12 +47,10 @@ class Kinect(CameraSensor):
     def start(self) -> None:
         super().start()
         p = self.properties
-        if p.depth_far <= p.depth_near:
-            raise ValueError(f"depth_far ({p.depth_far}) must be larger than depth_near ({p.depth_near})")
         self.rgb_view = CameraView.of(self.sim, f"{self.name}.rgb", p)
         self.depth_view = CameraView.of(self.sim, f"{self.name}.depth", p)
-        self.local_data["rgb"] = {"image": b"", "intrinsic_matrix": self.rgb_view.matrix}
-        self.local_data["depth"] = {"image": b"", "intrinsic_matrix": self.depth_view.matrix}
+        self.local_data["rgb"] = {"image": None, "intrinsic_matrix": self.rgb_view.matrix}
+        self.local_data["depth"] = {"image": None, "intrinsic_matrix": self.depth_view.matrix}
 
     def grab(self) -> None:
         p = self.properties
