@@ -14,7 +14,7 @@ Batches of `--frames` frames alternate (bare, morsec, bare, ...) so that both se
 the best batch of each is kept. The line "for reference" is what publishing costs when a client listens
 (base64 + JSON of the socket message), paid by the stream, not by the tick.
 
-    .venv/bin/python benchmarks/camera.py [--frames 10] [--repeats 5]
+    .venv/bin/python benchmarks/camera.py [--frames 10] [--repeats 8]
 """
 
 from __future__ import annotations
@@ -105,7 +105,7 @@ def bare_renderer(m, d, camera, *, depth: bool, near: float, far: float, effects
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--frames", type=int, default=10)
-    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--repeats", type=int, default=8)
     args = parser.parse_args(argv)
 
     results = {}

@@ -45,7 +45,8 @@ def _publisher_streams(morse: Any) -> Iterator[Any]:
                 yield from walk(value)
 
     for name in list(getattr(morse, "robots", [])):
-        robot = object.__getattribute__(morse, name)
+        # pymorse's loop-robot lists (robot, robot_001 -> morse.robots) can replace the name list itself
+        robot = name if isinstance(name, dict) else object.__getattribute__(morse, name)
         for element in list(dict.values(robot)):
             if type(element) is Component:
                 yield from walk(element)

@@ -1,7 +1,7 @@
 """Shared helpers for the runtime tests: run `morsec run` as a user would (a subprocess), on ports that
 are free, and talk to it over raw sockets.
 
-    with Morsec(scene_file(tmp_path, robot()), tmp_path) as sim:   # waits for SCENE INITIALIZED
+    with Morsec(scene_file(tmp_path, scene(robot())), tmp_path) as sim:   # waits for SCENE INITIALIZED
         client = sim.client()
         assert client.call("simulation", "list_robots") == ("SUCCESS", ["robot"])
         sim.stream("robot.pose").line()                              # one JSON line of the pose stream
@@ -28,7 +28,6 @@ from typing import Any
 
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
 MORSEC = Path(sys.executable).with_name("morsec")
 READY = "SCENE INITIALIZED"
 HOST = "127.0.0.1"
@@ -408,10 +407,6 @@ def start_all(*sims: Morsec) -> tuple[Morsec, ...]:
         stop_all(*sims)
         raise
     return sims
-
-
-def run_to_exit(command: list[str], cwd: Path, timeout: float = 120.0) -> subprocess.CompletedProcess:
-    return run_many([command], cwd, timeout)[0]
 
 
 def run_many(commands: list[list[str]], cwd: Path, timeout: float = 120.0) -> list[subprocess.CompletedProcess]:

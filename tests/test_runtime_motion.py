@@ -8,7 +8,6 @@ import math
 import threading
 import time
 
-import numpy as np
 import pytest
 
 from runtime_helpers import LineSocket, Morsec, pose_sensor, robot, scene, scene_file, start_all, stop_all, wrap

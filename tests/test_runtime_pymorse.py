@@ -24,8 +24,7 @@ patch_pymorse()
 
 from pymorse import Morse, MorseServiceFailed, MorseServicePreempted  # noqa: E402
 
-STRATEGIES = ["fixed_step", "best_effort"]  # fixed_step first: its server, spinning flat out, quits first
-DT = 1.0 / 60
+STRATEGIES = ["fixed_step", "best_effort"]
 
 
 def pymorse_scene(strategy: str) -> dict:

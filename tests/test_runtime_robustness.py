@@ -3,8 +3,6 @@ one, nothing crashes, the simulation keeps stepping, other clients are unaffecte
 
 from __future__ import annotations
 
-import json
-import os
 import random
 import socket
 import struct

@@ -3,9 +3,11 @@ component folder's own fragment (model.xml.j2, environment.xml.j2)."""
 
 from __future__ import annotations
 
+import copy
 import math
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +22,7 @@ from morsec.geometry import euler_to_quat, fmt, fmt_vec
 from morsec.resources import data_dir
 from morsec.scene.naming import join
 from morsec.compiler.assets import Assets, asset_dir
-from morsec.compiler.urdf import Link
+from morsec.compiler.urdf import Link, expand_xacro, read_urdf
 
 SENSOR_WIDTH_MM = 32.0
 STAT_EXTENT = 10.0  # MuJoCo's model size statistic, fixed (it scales clip planes, haze, default views)
@@ -110,15 +112,19 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         meshes=[{"name": n, "file": f, "scale": sc} for n, (f, sc) in sorted(assets.meshes.items())],
         robots=robots, objects=objects, zones=zones, servos=servos,
         actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
-    ))
+        equalities=sections["equality.xml.j2"],
+    ), mounts=_mounts(scene, cat))
 
 
-def pretty_xml(text: str) -> str:
-    """Parse (which also proves the templates produced well-formed XML) and re-indent."""
+def pretty_xml(text: str, mounts: dict[str, str] | None = None) -> str:
+    """Parse (which also proves the templates produced well-formed XML), move mounted components' bodies
+    (see `_mounts`) and re-indent."""
     try:
         root = ET.fromstring(text, parser=ET.XMLParser(target=ET.TreeBuilder(insert_comments=True)))
     except ET.ParseError as err:
         raise SceneError(f"internal error: generated MJCF is not well-formed XML: {err}") from None
+    if mounts:
+        _move_bodies(root, mounts)
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"
 
@@ -174,14 +180,17 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
 
 
-SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2")
+SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2", "equality.xml.j2")
 
 
 def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]) -> dict[str, list]:
-    """A component folder may add MJCF <actuator> entries (actuator.xml.j2: e.g. wheel motors) and MuJoCo
-    <sensor> entries (sensor.xml.j2). Context: name (fqn), robot, robot_type, robot_class (the robot's
-    catalogue class: its class attributes, e.g. wheel joints and radius), robot_properties, joints (the
-    robot's MJCF joint names by URDF name), links (MJCF body names by URDF link name), properties, component."""
+    """A component folder may add MJCF <actuator> entries (actuator.xml.j2: e.g. wheel motors), MuJoCo
+    <sensor> entries (sensor.xml.j2) and <equality> constraints (equality.xml.j2: e.g. a gripper's welds).
+    Context: name (fqn), robot, robot_type, robot_class (the robot's catalogue class: its class attributes,
+    e.g. wheel joints and radius), robot_properties, joints (the robot's MJCF joint names by URDF name),
+    links (MJCF body names by URDF link name), own_joints (the joints of the component's own xacro, root to
+    tip: dicts with name, mjname, type hinge|slide, range or None), objects (the scene's passive objects:
+    name, dynamic, properties ...), properties, component."""
     devices = cat.devices()
     out: dict[str, list] = {t: [] for t in SECTION_TEMPLATES}
 
@@ -191,13 +200,17 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
         tree = robot_trees[robot.name]
         joints = {link.joint["name"]: f"{robot.name}/{link.joint['name']}" for link in tree.walk() if link.joint}
         links = {link.name: (robot.name if link is tree else f"{robot.name}/{link.name}") for link in tree.walk()}
+        own = device_links(cls, fqn)
+        own_joints = [{"name": link.joint["name"], "mjname": link.joint["mjname"], "type": link.joint["type"],
+                       "range": link.joint["range"]} for link in (own.walk() if own else ()) if link.joint]
         for template in SECTION_TEMPLATES:
             path = component_template(cat, cls, template)
             if path:
                 out[template].append(render(env, path, name=fqn, robot=robot.name, robot_type=robot.type,
                                             robot_class=cat.get("robots", robot.type),
                                             robot_properties=robot.properties,
-                                            joints=joints, links=links, properties=comp.properties,
+                                            joints=joints, links=links, own_joints=own_joints,
+                                            objects=scene.objects, properties=comp.properties,
                                             component=comp))
         for child in comp.components:
             visit(child, fqn, robot)
@@ -246,10 +259,83 @@ def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
     if template:
         fragment = render(env, template, name=fqn, properties=comp.properties, component=comp,
                           color=comp.color)
+    arm = device_links(cls, fqn)
     return {
         "fqn": fqn, "pos": comp.translate, "quat": euler_to_quat(*comp.rotate), "fragment": fragment,
+        # an arm's links (device_links), rendered with the robots' link macro: no free joint, no contacts
+        "arm": RobotBody(name=fqn, type=cls.id, root=arm, components=[], free=False, gravcomp=False,
+                         friction=None, collides=False) if arm is not None else None,
         "children": [_component(child, fqn, cat, env) for child in comp.components],
     }
+
+
+# ---- components with their own kinematics (arms) and components mounted on one of their bodies
+
+def device_links(cls, fqn: str) -> Link | None:
+    """The link tree of a sensor or actuator whose class names a xacro file of its folder (`xacro =
+    "arm.urdf.xacro"`: an arm), rendered inside the component's body: URDF link L becomes body `<fqn>/L`,
+    joint J `<fqn>/J` (the robots' rule with the component's name). Its geoms never collide; per-joint
+    MuJoCo armature from the class's `joint_armature` ({joint: kg m^2}). None for a component without one."""
+    name = getattr(cls, "xacro", None)
+    if not name:
+        return None
+    path = Path(cls.folder) / name
+    tree = copy.deepcopy(_device_tree(path, path.stat().st_mtime_ns if path.is_file() else 0))
+    armature = getattr(cls, "joint_armature", {}) or {}
+    for link in tree.walk():
+        link.body = f"{fqn}/{link.name}"
+        has_visual = any(not g.collision for g in link.geoms)
+        for g in link.geoms:
+            if g.kind == "mesh":
+                raise SceneError(f"{path}: link {link.name!r}: meshes are not supported in a component's xacro "
+                                 "(use boxes, cylinders and spheres)")
+            g.visible = g.collision and not has_visual
+        if link.joint:
+            link.joint["mjname"] = f"{fqn}/{link.joint['name']}"
+            if link.joint["name"] in armature:
+                link.joint["armature"] = float(armature[link.joint["name"]])
+    return tree
+
+
+@lru_cache(maxsize=32)
+def _device_tree(path: Path, mtime_ns: int) -> Link:
+    return read_urdf(expand_xacro(path, {}), str(path))
+
+
+def _mounts(scene, cat: Catalogue) -> dict[str, str]:
+    """{child component body: body to nest it in} for the children of components whose class sets
+    `mount_body` (a body of its own model, named relative to the component: "tilt" -> `<fqn>/tilt`): a
+    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link."""
+    devices = cat.devices()
+    out: dict[str, str] = {}
+
+    def visit(comps, parent: str):
+        for comp in comps:
+            fqn = join(parent, comp.name)
+            mount = getattr(devices[comp.type], "mount_body", None)
+            if mount:
+                for child in comp.components:
+                    out[join(fqn, child.name)] = f"{fqn}/{mount}"
+            visit(comp.components, fqn)
+
+    for robot in scene.robots:
+        visit(robot.components, robot.name)
+    return out
+
+
+def _move_bodies(root: ET.Element, mounts: dict[str, str]) -> None:
+    parents = {child: parent for parent in root.iter() for child in parent}
+    bodies = {b.get("name"): b for b in root.iter("body")}
+    for child, target in mounts.items():
+        if target not in bodies:
+            owner = target.rsplit("/", 1)[0]
+            own = ", ".join(sorted(b for b in bodies if b.startswith(owner + "/"))) or "none"
+            raise SceneError(f"component {owner!r}: its class mounts its children on body {target!r}, which its "
+                             f"model does not have (its bodies: {own})")
+        body = bodies[child]
+        parents[body].remove(body)
+        bodies[target].append(body)
+        parents[body] = bodies[target]
 
 
 def _object(obj, cat: Catalogue, env) -> str:

@@ -11,7 +11,6 @@ import os
 import socket
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import mujoco
@@ -27,6 +26,7 @@ from morsec.testing import simulate
 
 CATALOGUE = load_catalogue(Path(__file__).parent)
 HEIGHT = 1.0  # of the fixed fake robot carrying the cameras
+SMALL = "cam_width: 16, cam_height: 12"
 # id: (builder name, frequency, cam_width, cam_height, cam_near, cam_far, Vertical_Flip)
 CAMERAS = {
     "video_camera": ("VideoCamera", 20.0, 256, 256, 0.1, 100.0, True),
@@ -207,8 +207,9 @@ def test_vertical_flip_puts_the_bottom_row_first(tmp_path):
     """The box is below the optical axis: 0.1 to 0.9 m high, 4 m ahead of a camera 1 m up with fx = 32, its
     rows are v = 12 + 32 (1 - z) / 4, from 12.8 to 19.2: rows 13 to 18 with Vertical_Flip (default: row 0
     is the top of the picture); without, the picture is upside down."""
-    cams = """{name: up, type: video_camera, properties: {cam_width: 32, cam_height: 24, cam_focal: 32.0}}
-              {name: down, type: video_camera, properties: {cam_width: 32, cam_height: 24, cam_focal: 32.0, Vertical_Flip: false}}"""
+    lens = "cam_width: 32, cam_height: 24, cam_focal: 32.0"
+    cams = f"""{{name: up, type: video_camera, properties: {{{lens}}}}}
+               {{name: down, type: video_camera, properties: {{{lens}, Vertical_Flip: false}}}}"""
     with simulate(holder_scene(cams, box("target", (4.5, 0.0, 0.5), (1.0, 1.0, 0.8))), tmp_path) as sim:
         sim.step(3)
         up, down = sim.data("r.up")["image"], sim.data("r.down")["image"]
@@ -320,8 +321,9 @@ def test_shadows_are_off_unless_asked(tmp_path):
     width, at = 96, (3.4, 3.6, 2.5)
     fx = width * 35 / 32
     look_down = "rotate: [0.0, 1.5707963267948966, 0.0]"
-    cams = f"""{{name: plain, type: video_camera, {look_down}, properties: {{cam_width: {width}, cam_height: {width}}}}}
-               {{name: shaded, type: video_camera, {look_down}, properties: {{cam_width: {width}, cam_height: {width}, shadows: true}}}}"""
+    size = f"cam_width: {width}, cam_height: {width}"
+    cams = f"""{{name: plain, type: video_camera, {look_down}, properties: {{{size}}}}}
+               {{name: shaded, type: video_camera, {look_down}, properties: {{{size}, shadows: true}}}}"""
 
     def pixel(x, y):  # a floor point's pixel (row, column)
         return int(width / 2 - fx * (x - at[0]) / at[2]), int(width / 2 - fx * (y - at[1]) / at[2])
@@ -408,8 +410,9 @@ def test_depth_camera_points_on_a_wall(tmp_path):
 def test_depth_camera_keep_resolution_and_socket_points(tmp_path):
     """The wall only fills the lower half (the camera is at its top edge): without keep_resolution only
     the lower rows give points; with it every pixel does, NaN above the edge."""
-    cams = """{name: organized, type: depth_camera, streams: [socket], properties: {cam_width: 16, cam_height: 12, keep_resolution: true}}
-              {name: plain, type: depth_camera, properties: {cam_width: 16, cam_height: 12}}"""
+    size = "cam_width: 16, cam_height: 12"
+    cams = f"""{{name: organized, type: depth_camera, streams: [socket], properties: {{{size}, keep_resolution: true}}}}
+               {{name: plain, type: depth_camera, properties: {{{size}}}}}"""
     wall = box("wall", (3.5, 0.0, 0.0), (1.0, 20.0, 2.0), (0.7, 0.7, 0.7))  # top edge at z = 1 (the camera's)
     with simulate(holder_scene(cams, wall, env="empty"), tmp_path, sockets=True) as sim:
         client = _connect(sim, "r.organized")
@@ -543,8 +546,8 @@ robots:
         translate: [0.0, 0.0, 0.2]
         services: [socket]
         components:
-          - {{name: left, type: video_camera, translate: [0.0, 0.2, 0.0], properties: {{cam_width: 16, cam_height: 12}}}}
-          - {{name: right, type: video_camera, translate: [0.0, -0.2, 0.0], properties: {{cam_width: 16, cam_height: 12}}}}
+          - {{name: left, type: video_camera, translate: [0.0, 0.2, 0.0], properties: {{{SMALL}}}}}
+          - {{name: right, type: video_camera, translate: [0.0, -0.2, 0.0], properties: {{{SMALL}}}}}
       - {{name: lonely, type: stereo_unit, services: [socket]}}
 """
     with simulate(scene, tmp_path) as sim:
@@ -562,3 +565,21 @@ robots:
         assert len(left) == len(right) == before + 2  # both idle after their capture
         failed = call_async(sim, "r.lonely", "capture", 1)
         assert failed[0][0] == "FAILED" and "no camera" in failed[0][1]
+
+
+def test_bad_clip_planes_are_scene_errors(build_yaml):
+    from morsec.errors import SceneError
+    with pytest.raises(SceneError, match=r"scene.yaml:\d+:\d+: .*cam_far \(2.0\) must be larger than cam_near \(5.0\)"):
+        build_yaml(holder_scene("{name: cam, type: video_camera, properties: {cam_near: 5.0, cam_far: 2.0}}"))
+    with pytest.raises(SceneError, match=r"depth_far \(0.5\) must be larger than depth_near \(1.0\)"):
+        build_yaml(holder_scene("{name: k, type: kinect, properties: {depth_far: 0.5}}"))
+
+
+def test_text_stream_writes_the_camera_message(tmp_path):
+    scene = holder_scene("{name: cam, type: video_camera, streams: [text], properties: {cam_width: 4, cam_height: 2}}")
+    with simulate(scene, tmp_path) as sim:
+        sim.step(3)
+        image = sim.data("r.cam")["image"]
+    text = next(tmp_path.glob("*.txt")).read_text()
+    assert f"image = {base64.b64encode(image.tobytes()).decode()}\n" in text
+    assert "height = 2\nwidth = 4\n" in text

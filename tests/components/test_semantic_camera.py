@@ -6,10 +6,8 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import mujoco
-import numpy as np
 import pytest
 
 from morsec.middleware.socket_streams import encode

@@ -21,10 +21,11 @@ class SemanticCamera(Sensor):
     `tag` (default 'Object') is true, or whose `Type` equals `tag`. An object is seen when its bounding
     box (the boxes of its geoms) meets the camera's view frustum (field of view from cam_width,
     cam_height, cam_focal / cam_fov; depth from cam_near to cam_far) and — unless `noocclusion` — a ray
-    from the camera to the centre of that bounding box hits that object first. The robot carrying the camera neither
-    blocks the view nor is reported. Each seen object: `{name: its Label or name, description, type, position: [x, y, z],
-    orientation: {x, y, z, w}}`, in the world frame, or in the camera's frame (x forward, y left, z up)
-    when `relative`. The camera looks along the component's +x. Nothing is rendered."""
+    from the camera to the centre of that bounding box hits that object first. The robot carrying the
+    camera neither blocks the view nor is reported. Each seen object: `{name: its Label or name,
+    description, type, position: [x, y, z], orientation: {x, y, z, w}}`, in the world frame, or in the
+    camera's frame (x forward, y left, z up) when `relative`. The camera looks along the component's +x.
+    Nothing is rendered."""
 
     short_descr = "Names and poses of the tagged objects in the camera's field of view"
     builder_name = "SemanticCamera"
