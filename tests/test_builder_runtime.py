@@ -20,7 +20,9 @@ CORPUS = sorted(p.stem for p in SCRIPTS.glob("*.py"))
 
 @pytest.mark.parametrize("name", CORPUS)
 def test_corpus_script_answers_pymorse(name, tmp_path):
-    with Morsec(SCRIPTS / f"{name}.py", tmp_path, cwd=SCRIPTS, prebuild=False, strategy="fixed_step") as sim:
+    script = tmp_path / f"{name}.py"  # run from a scratch folder: text streams write where morsec runs
+    script.write_text((SCRIPTS / f"{name}.py").read_text())
+    with Morsec(script, tmp_path, cwd=tmp_path, prebuild=False, strategy="fixed_step") as sim:
         with Morse(port=sim.service_port) as client:
             details = client.rpc("simulation", "details")
             robots = [r["name"] for r in details["robots"]]

@@ -206,11 +206,15 @@ class JointServos:
             ff += self.kv * np.asarray(velocity, dtype=float)
         d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)
 
-    def teleport(self, values) -> None:
-        """Put the joints at `values` at once (and hold them there)."""
+    def teleport(self, values, which=None) -> None:
+        """Put joints at `values` at once, at rest, and hold them there: all of them, or those of the
+        indices `which` (`values` then gives theirs, in that order)."""
         d = self.sim.data
+        which = np.arange(len(self.names)) if which is None else np.asarray(which, dtype=int)
         values = np.asarray(values, dtype=float)
-        d.qpos[self.qpos] = values
-        d.qvel[self.dof] = 0.0
+        d.qpos[self.qpos[which]] = values
+        d.qvel[self.dof[which]] = 0.0
         mujoco.mj_kinematics(self.sim.model, d)
-        self.command(values)
+        setpoint = self.setpoint.copy()
+        setpoint[which] = values
+        self.command(setpoint)

@@ -583,3 +583,22 @@ def test_text_stream_writes_the_camera_message(tmp_path):
     text = next(tmp_path.glob("*.txt")).read_text()
     assert f"image = {base64.b64encode(image.tobytes()).decode()}\n" in text
     assert "height = 2\nwidth = 4\n" in text
+
+
+def test_cameras_render_when_mujoco_was_imported_first(tmp_path):
+    """MuJoCo picks its GL backend when first imported; a program that imported it before morsec got GLFW
+    (needs a display). The cameras still render, with the headless backend morsec chose."""
+    (tmp_path / "s.yaml").write_text(holder_scene(f"{{name: cam, type: video_camera, properties: {{{SMALL}}}}}"))
+    script = f"""
+import mujoco
+import morsec
+from pathlib import Path
+from morsec.testing import simulate
+with simulate(Path({str(tmp_path / "s.yaml")!r}).read_text(), Path({str(tmp_path)!r})) as sim:
+    sim.step(3)
+    print(sim.data("r.cam")["image"].shape)
+"""
+    env = {k: v for k, v in os.environ.items() if k not in ("MUJOCO_GL", "PYOPENGL_PLATFORM", "DISPLAY")}
+    result = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "(12, 16, 4)"
