@@ -74,3 +74,28 @@ def fmt(x: float) -> str:
 
 def fmt_vec(values) -> str:
     return " ".join(fmt(v) for v in values)
+
+
+# ---- the same on plain floats: a rotation matrix as MuJoCo's xmat row-major 9-list. A few microseconds
+# less per call than numpy on 3x3, which matters for sensors ticking every frame.
+
+def euler_of_xmat(m) -> tuple[float, float, float]:
+    """(roll, pitch, yaw) of a row-major 3x3 rotation R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
+    r20 = m[6]
+    pitch = math.asin(-1.0 if r20 > 1.0 else 1.0 if r20 < -1.0 else -r20)
+    if abs(r20) < 1 - 1e-9:
+        return math.atan2(m[7], m[8]), pitch, math.atan2(m[3], m[0])
+    return 0.0, pitch, math.atan2(-m[1], m[4])
+
+
+def transpose_times(a, b) -> list[float]:
+    """Aᵀ B for row-major 3x3 matrices given as 9-lists."""
+    return [a[0] * b[c] + a[3] * b[3 + c] + a[6] * b[6 + c] for c in range(3)] + \
+           [a[1] * b[c] + a[4] * b[3 + c] + a[7] * b[6 + c] for c in range(3)] + \
+           [a[2] * b[c] + a[5] * b[3 + c] + a[8] * b[6 + c] for c in range(3)]
+
+
+def transpose_apply(a, v) -> tuple[float, float, float]:
+    """Aᵀ v for a row-major 3x3 A and a 3-vector v."""
+    x, y, z = v
+    return (a[0] * x + a[3] * y + a[6] * z, a[1] * x + a[4] * y + a[7] * z, a[2] * x + a[5] * y + a[8] * z)

@@ -1,12 +1,8 @@
 import math
 
-import numpy as np
-
 from morsec.component import DataField, Level, Sensor
-from morsec.geometry import matrix_to_euler, normalize_angle
+from morsec.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
 
-FIELDS_DIFF = ("dx", "dy", "dz", "dyaw", "dpitch", "droll")
-FIELDS_INT = ("x", "y", "z", "yaw", "pitch", "roll", "vx", "vy", "vz", "wz", "wy", "wx")
 
 
 class Odometry(Sensor):
@@ -43,51 +39,58 @@ class Odometry(Sensor):
         DataField("wx", 0.0, "float", "angular velocity about x, rad/s", level="integrated"),
     )
 
+    # Poses are kept as plain floats (position 3-tuple, row-major rotation 9-list): this sensor ticks
+    # every frame, and 3x3 numpy products cost more than the arithmetic itself.
     def start(self):
-        self.origin_pos = self.position().copy()
-        self.origin_rot = self.rotation().copy()
-        self.previous_pos = self.origin_pos.copy()
-        self.previous_rot = self.origin_rot.copy()
+        self.origin_pos, self.origin_rot = self._pose()
+        self.previous_pos, self.previous_rot = self.origin_pos, self.origin_rot
 
-    def relative(self):
-        """Current pose in the initial sensor frame: position and rotation matrix."""
-        pos = self.origin_rot.T @ (self.position() - self.origin_pos)
-        rot = self.origin_rot.T @ self.rotation()
-        return pos, rot
+    def _pose(self):
+        data = self.sim.data
+        return tuple(data.xpos[self.body_id].tolist()), data.xmat[self.body_id].tolist()
+
+    def _in_origin(self, pos, rot):
+        """A pose expressed in the sensor's initial frame."""
+        o = self.origin_pos
+        return (transpose_apply(self.origin_rot, (pos[0] - o[0], pos[1] - o[1], pos[2] - o[2])),
+                transpose_times(self.origin_rot, rot))
 
     def advance(self):
-        pos, rot = self.position().copy(), self.rotation().copy()
+        pos, rot = self._pose()
         prev_pos, prev_rot = self.previous_pos, self.previous_rot
         self.previous_pos, self.previous_rot = pos, rot
         return prev_pos, prev_rot, pos, rot
 
     def default_action(self):
         prev_pos, prev_rot, pos, rot = self.advance()
-        delta = self.origin_rot.T @ (pos - prev_pos)
-        r0, p0, y0 = matrix_to_euler(self.origin_rot.T @ prev_rot)
-        r1, p1, y1 = matrix_to_euler(self.origin_rot.T @ rot)
-        self.local_data.update(dx=float(delta[0]), dy=float(delta[1]), dz=float(delta[2]), dyaw=normalize_angle(y1 - y0),
+        dx, dy, dz = transpose_apply(self.origin_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1],
+                                                        pos[2] - prev_pos[2]))
+        r0, p0, y0 = euler_of_xmat(transpose_times(self.origin_rot, prev_rot))
+        r1, p1, y1 = euler_of_xmat(transpose_times(self.origin_rot, rot))
+        self.local_data.update(dx=dx, dy=dy, dz=dz, dyaw=normalize_angle(y1 - y0),
                                dpitch=normalize_angle(p1 - p0), droll=normalize_angle(r1 - r0))
 
 
 class RawOdometry(Odometry):
     def default_action(self):
         prev_pos, _, pos, _ = self.advance()
-        self.local_data["dS"] = float(np.linalg.norm(pos - prev_pos))
+        self.local_data["dS"] = math.dist(pos, prev_pos)
 
 
 class IntegratedOdometry(Odometry):
     def default_action(self):
         prev_pos, prev_rot, pos, rot = self.advance()
-        rel_pos, rel_rot = self.relative()
-        roll, pitch, yaw = matrix_to_euler(rel_rot)
+        (x, y, z), rel_rot = self._in_origin(pos, rot)
+        roll, pitch, yaw = euler_of_xmat(rel_rot)
         # velocities: the previous->current transform in the previous sensor frame, times the nominal rate
         f = self.frequency
-        v = prev_rot.T @ (pos - prev_pos) * f
-        d_roll, d_pitch, d_yaw = matrix_to_euler(prev_rot.T @ rot)
-        self.local_data.update(x=float(rel_pos[0]), y=float(rel_pos[1]), z=float(rel_pos[2]), yaw=yaw, pitch=pitch,
-                               roll=roll, vx=float(v[0]), vy=float(v[1]), vz=float(v[2]), wz=d_yaw * f, wy=d_pitch * f,
-                               wx=d_roll * f)
+        vx, vy, vz = transpose_apply(prev_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1], pos[2] - prev_pos[2]))
+        d_roll, d_pitch, d_yaw = euler_of_xmat(transpose_times(prev_rot, rot))
+        local = self.local_data
+        local["x"], local["y"], local["z"] = x, y, z
+        local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
+        local["vx"], local["vy"], local["vz"] = vx * f, vy * f, vz * f
+        local["wz"], local["wy"], local["wx"] = d_yaw * f, d_pitch * f, d_roll * f
 
 
 COMPONENT = Odometry

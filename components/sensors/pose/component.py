@@ -1,4 +1,5 @@
 from morsec.component import DataField, Sensor
+from morsec.geometry import euler_of_xmat
 
 
 class Pose(Sensor):
@@ -18,9 +19,12 @@ class Pose(Sensor):
     )
 
     def default_action(self):
-        x, y, z = (float(v) for v in self.position())
-        roll, pitch, yaw = self.euler()
-        self.local_data.update(x=x, y=y, z=z, yaw=yaw, pitch=pitch, roll=roll)
+        data = self.sim.data
+        x, y, z = data.xpos[self.body_id].tolist()
+        roll, pitch, yaw = euler_of_xmat(data.xmat[self.body_id].tolist())
+        local = self.local_data
+        local["x"], local["y"], local["z"] = x, y, z
+        local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
 
 
 COMPONENT = Pose

@@ -1,0 +1,473 @@
+"""MORSE's Armature: a kinematic chain of revolute and prismatic joints (an arm), commanded joint by joint,
+by trajectories or by placing its end with inverse kinematics.
+
+The arm is the component's own model, a xacro file of its folder (`xacro`, read by the compiler: URDF
+link L becomes body `<fqn>/L`, joint J `<fqn>/J`). Each joint is a real MuJoCo joint held by a position
+servo of the same name (actuator.xml.j2); this actuator moves the servos' setpoints at the joint speeds
+(`RotationSpeed`, `LinearSpeed` or a service's `speed`) with velocity and gravity feed-forward
+(`morsec.runtime.robot.JointServos`). `local_data` is the joint dict {joint: target}, root to tip: what a
+stream sends in (joints it leaves out keep their targets). A movement is over when every joint is within
+`AngleTolerance` (rad) or `DistanceTolerance` (m) of its target: a pending `rotate`, `translate`,
+`rotate_joints` or `translate_joints` then answers SUCCESS.
+
+Inverse kinematics uses MuJoCo's own Jacobians: damped least squares on `mj_jac` of the IK target's body
+(a link whose origin is the end effector), on a scratch MjData, joint limits clamped at each step.
+Subclasses (KukaLWR) set `xacro`, `mount_body` (where appended components go), `ik_targets` and
+`joint_armature`.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from typing import Any, ClassVar
+
+import mujoco
+import numpy as np
+from pydantic import Field
+
+from morsec.component import Actuator, ComponentProperties, async_service, service
+from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
+from morsec.runtime.robot import JointServos
+
+log = logging.getLogger("morsec.actuators.armature")
+
+IK_DAMPING = 0.02  # damped least squares: lambda, m (rad)
+IK_MAX_STEP = 0.2  # rad (m) per iteration and joint
+IK_GIVE_UP_S = 2.0  # after the end of a move_IK_target, seconds to reach the target before FAILED
+
+
+class Armature(Actuator):
+    """A chain of revolute and prismatic joints: the joint dict {joint: value} (rad or m) streams in;
+    services set joints at once (`set_rotation(s)`, `set_translation(s)`), move them at a speed
+    (`rotate`, `translate`, ...: asynchronous), follow a timed trajectory (`trajectory`), or place the end
+    of the arm by inverse kinematics (`place_IK_target`, `move_IK_target`). Its own arm is a small example
+    (shoulder yaw and pitch, elbow, a telescopic end); KukaLWR is a real one. Read the joints with an
+    `armature_pose` sensor appended to it."""
+
+    short_descr = "Kinematic chain of revolute and prismatic joints (an arm), by joints, trajectories or IK"
+    builder_name = "Armature"
+    frequency = 60.0
+
+    # read by the compiler: the arm's description and the body its children components are mounted in
+    xacro: ClassVar[str] = "armature.urdf.xacro"
+    mount_body: ClassVar[str | None] = "extension"
+    joint_armature: ClassVar[dict[str, float]] = {"shoulder_yaw": 0.05, "shoulder_pitch": 0.05, "elbow": 0.05,
+                                                  "extension": 0.2}
+    # links whose origin inverse kinematics can place (MORSE's IK targets)
+    ik_targets: ClassVar[tuple[str, ...]] = ("extension",)
+
+    class Properties(ComponentProperties):
+        DistanceTolerance: float = Field(0.005, gt=0, description="tolerance when translating a joint or "
+                                         "placing an IK target, m")
+        AngleTolerance: float = Field(0.01, gt=0, description="tolerance when rotating a joint or orienting "
+                                      "an IK target, rad")
+        RotationSpeed: float = Field(0.8, gt=0, description="default speed of the revolute joints, rad/s")
+        LinearSpeed: float = Field(0.05, gt=0, description="default speed of the prismatic joints, m/s")
+        IKRotationSpeed: float = Field(0.5, gt=0, description="default rotation speed of an IK target, rad/s")
+        IKLinearSpeed: float = Field(0.5, gt=0, description="default linear speed of an IK target, m/s")
+
+    data = ()  # the joints, from the model: {joint name: position}, root to tip
+
+    # ------------------------------------------------------------------ set up
+    def start(self):
+        m = self.sim.model
+        self.servos = JointServos(self.sim, self.name)
+        if not self.servos.names:
+            raise ValueError("its model has no joints: an armature needs revolute or prismatic joints")
+        q = self.servos.positions()
+        self.local_data.clear()
+        self.local_data.update((n, float(v)) for n, v in zip(self.servos.names, q))
+        self._targets = q.copy()
+        self.joint_speed: dict[str, float] = {}
+        self._trajectory: dict | None = None
+        self._ik_move: dict | None = None
+        self._warned: set[str] = set()
+        self._ik_bodies = {}
+        for target in self.ik_targets:
+            body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/{target}")
+            if body >= 0:
+                self._ik_bodies[target] = body
+        self._scratch = mujoco.MjData(m)
+        self.servos.command(q)
+
+    # ------------------------------------------------------------------ joints
+    @property
+    def names(self) -> list[str]:
+        return self.servos.names
+
+    def _index(self, joint: str) -> int:
+        if joint not in self.servos.index:
+            raise ValueError(f"joint <{joint}> does not exist in armature {self.name} "
+                             f"(joints: {', '.join(self.names)})")
+        return self.servos.index[joint]
+
+    def _revolute(self, joint: str) -> int:
+        i = self._index(joint)
+        if self.servos.prismatic[i]:
+            raise ValueError(f"joint {joint} is not a revolute joint: cannot set its rotation")
+        return i
+
+    def _prismatic(self, joint: str) -> int:
+        i = self._index(joint)
+        if not self.servos.prismatic[i]:
+            raise ValueError(f"joint {joint} is not a prismatic joint: cannot set its translation")
+        return i
+
+    def joint_values(self) -> dict[str, float]:
+        return {n: float(v) for n, v in zip(self.names, self.servos.positions())}
+
+    def _read_targets(self) -> np.ndarray:
+        """The targets in local_data (a stream message may leave joints out: they keep theirs), clamped to
+        the joint limits and written back."""
+        local = self.local_data
+        for key in [k for k in local if k not in self.servos.index]:
+            if key not in self._warned:
+                self._warned.add(key)
+                log.warning("%s: no joint %r (joints: %s): ignored", self.name, key, ", ".join(self.names))
+            del local[key]
+        values = np.array([float(local.get(n, t)) for n, t in zip(self.names, self._targets)])
+        values = self.servos.clamp(values)
+        self._targets = values
+        for n, v in zip(self.names, values):
+            local[n] = float(v)
+        return values
+
+    def _set_targets(self, values) -> None:
+        values = self.servos.clamp(values)
+        self._targets = values
+        for n, v in zip(self.names, values):
+            self.local_data[n] = float(v)
+
+    def _tolerances(self) -> np.ndarray:
+        p = self.properties
+        return np.where(self.servos.prismatic, p.DistanceTolerance, p.AngleTolerance)
+
+    def _reached(self, targets) -> bool:
+        return bool(np.all(np.abs(np.asarray(targets) - self.servos.positions()) < self._tolerances()))
+
+    def _stop_motions(self) -> None:
+        """A joint-level command ends IK moves and trajectories (MORSE suspends its IK targets)."""
+        self._ik_move = None
+        self._trajectory = None
+
+    # ------------------------------------------------------------------ the tick
+    def default_action(self):
+        if self._ik_move is not None:
+            self._exec_ik_move()
+            return
+        if self._trajectory is not None:
+            self._exec_trajectory()
+            return
+        targets = self._read_targets()
+        servos = self.servos
+        p = self.properties
+        speeds = np.array([self.joint_speed.get(n) or (p.LinearSpeed if pr else p.RotationSpeed)
+                           for n, pr in zip(self.names, servos.prismatic)])
+        delta = np.clip(targets - servos.setpoint, -speeds / self.frequency, speeds / self.frequency)
+        servos.command(servos.setpoint + delta, delta * self.frequency)
+        if self._reached(targets):
+            self.joint_speed.clear()
+            self.completed("SUCCESS")
+
+    # ------------------------------------------------------------------ services: joints
+    def _teleport(self, indices: list[int], values: list[float]) -> None:
+        self._stop_motions()
+        targets = self._read_targets().copy()
+        targets[indices] = values
+        targets = self.servos.clamp(targets)
+        self._set_targets(targets)
+        self.servos.teleport(targets[indices], indices)
+
+    @service
+    def set_rotation(self, joint: str, rotation: float) -> None:
+        """Turn a revolute joint to `rotation` (rad, from its origin, clamped to its limits) at once."""
+        self._teleport([self._revolute(joint)], [float(rotation)])
+
+    @service
+    def set_rotations(self, rotations: list[float]) -> None:
+        """Set the first len(rotations) joints, root to tip (`get_joints`), at once; they must all be revolute
+        (else nothing moves). Extra values are ignored."""
+        n = min(len(rotations), len(self.names))
+        for i in range(n):
+            if self.servos.prismatic[i]:
+                raise ValueError(f"joint {self.names[i]} is not a revolute joint: cannot apply the rotation set")
+        self._teleport(list(range(n)), [float(r) for r in rotations[:n]])
+
+    @service
+    def set_translation(self, joint: str, translation: float) -> None:
+        """Move a prismatic joint to `translation` (m, from its origin, clamped to its limits) at once."""
+        self._teleport([self._prismatic(joint)], [float(translation)])
+
+    @service
+    def set_translations(self, translations: list[float]) -> None:
+        """Set the first len(translations) joints, root to tip, at once; they must all be prismatic."""
+        n = min(len(translations), len(self.names))
+        for i in range(n):
+            if not self.servos.prismatic[i]:
+                raise ValueError(f"joint {self.names[i]} is not a prismatic joint: cannot apply the translation set")
+        self._teleport(list(range(n)), [float(t) for t in translations[:n]])
+
+    def _move(self, joints: dict[str, float], speed: float | None, check) -> None:
+        indices = {joint: check(joint) for joint in joints}  # all checked before anything moves
+        self._stop_motions()
+        targets = self._read_targets().copy()
+        for joint, value in joints.items():
+            targets[indices[joint]] = float(value)
+            self.joint_speed[joint] = abs(float(speed)) if speed else None
+        self._set_targets(targets)
+
+    @async_service(interruptible=True)
+    def rotate(self, joint: str, rotation: float, speed: float | None = None) -> None:
+        """Turn a revolute joint to `rotation` (rad, clamped to its limits) at `speed` rad/s (default:
+        RotationSpeed); answers when it is there."""
+        self._move({joint: rotation}, speed, self._revolute)
+
+    @async_service(interruptible=True)
+    def rotate_joints(self, joint_rotations: dict[str, float], speed: float | None = None) -> None:
+        """Turn several revolute joints {joint: rad} at `speed` rad/s; answers when all are there."""
+        self._move(dict(joint_rotations), speed, self._revolute)
+
+    @async_service(interruptible=True)
+    def translate(self, joint: str, translation: float, speed: float | None = None) -> None:
+        """Move a prismatic joint to `translation` (m, clamped) at `speed` m/s (default: LinearSpeed)."""
+        self._move({joint: translation}, speed, self._prismatic)
+
+    @async_service(interruptible=True)
+    def translate_joints(self, joint_translations: dict[str, float], speed: float | None = None) -> None:
+        """Move several prismatic joints {joint: m} at `speed` m/s; answers when all are there."""
+        self._move(dict(joint_translations), speed, self._prismatic)
+
+    @service
+    def get_joints(self) -> list[str]:
+        """The names of the joints, root to tip (the order of set_rotations and trajectories)."""
+        return list(self.names)
+
+    @service
+    def get_dofs(self) -> dict[str, list[bool]]:
+        """{joint: [x, y, z]}: the axes (of the joint's own frame) it turns about or slides along."""
+        m = self.sim.model
+        return {n: [bool(abs(a) > 1e-6) for a in m.jnt_axis[j]] for n, j in zip(self.names, self.servos.joints)}
+
+    @service
+    def get_IK_limits(self, joint: str) -> list[float] | None:
+        """[min, max] of a joint (rad or m), None when it has no limits."""
+        i = self._index(joint)
+        return [float(v) for v in self.servos.range[i]] if self.servos.limited[i] else None
+
+    # ------------------------------------------------------------------ services: trajectories
+    @async_service
+    def trajectory(self, trajectory: dict[str, Any]) -> None:
+        """Follow a joint trajectory, MORSE's (ROS JointTrajectory's) format: {"starttime": t (optional,
+        simulation clock, s: not before now), "points": [{"positions": [...], "time_from_start": s}, ...]}.
+        Positions are root to tip (`get_joints`; joints left out keep their targets); velocities and
+        accelerations, if given, are ignored: the joints go linearly from point to point, each reached at its
+        time. Answers SUCCESS once the last point's time has passed and the joints are there."""
+        try:
+            points = trajectory["points"]
+            parsed, last = [], -math.inf
+            for p in points:
+                t = float(p["time_from_start"])
+                if t < last:
+                    raise ValueError("trajectory points must be in time order (time_from_start)")
+                last = t
+                values = self._read_targets().copy()
+                positions = [float(v) for v in p["positions"]][:len(self.names)]
+                values[:len(positions)] = positions
+                parsed.append((t, self.servos.clamp(values)))
+        except KeyError as err:
+            raise ValueError(f"invalid trajectory: key {err} was expected") from None
+        except (TypeError, AttributeError):
+            raise ValueError("invalid trajectory: expected {\"points\": [{\"positions\": [...], "
+                             "\"time_from_start\": s}, ...]}") from None
+        if not parsed:
+            raise ValueError("invalid trajectory: no points")
+        now = self.sim.clock.now()
+        start = max(now, float(trajectory.get("starttime", now) or now))
+        self._ik_move = None
+        self._trajectory = {"start": start, "points": parsed, "origin": None}
+
+    def _exec_trajectory(self) -> None:
+        traj = self._trajectory
+        t = self.sim.clock.now() - traj["start"]
+        servos = self.servos
+        if t < 0:
+            servos.command(servos.setpoint)
+            return
+        if traj["origin"] is None:
+            traj["origin"] = (t, servos.setpoint.copy())
+        previous = traj["origin"]
+        for time, values in traj["points"]:
+            if time > t:
+                span = time - previous[0]
+                frac = (t - previous[0]) / span if span > 0 else 1.0
+                velocity = (values - previous[1]) / span if span > 0 else np.zeros_like(values)
+                servos.command(previous[1] + frac * (values - previous[1]), velocity)
+                self._set_targets(values)
+                return
+            previous = (time, values)
+        final = traj["points"][-1][1]
+        servos.command(final)
+        self._set_targets(final)
+        if self._reached(final):
+            self._trajectory = None
+            self.completed("SUCCESS")
+
+    # ------------------------------------------------------------------ services: inverse kinematics
+    @service
+    def list_IK_targets(self) -> list[str]:
+        """The IK targets of this armature: links whose origin `place_IK_target` / `move_IK_target` place."""
+        return sorted(self._ik_bodies)
+
+    def _ik_body(self, name: str) -> int:
+        if name not in self._ik_bodies:
+            raise ValueError(f"IK target <{name}> does not exist for armature {self.name} "
+                             f"(targets: {', '.join(sorted(self._ik_bodies)) or 'none'})")
+        return self._ik_bodies[name]
+
+    def _ik_goal(self, name: str, translation, euler_rotation, relative: bool):
+        body = self._ik_body(name)
+        d = self.sim.data
+        pos, rot = d.xpos[body].copy(), d.xmat[body].reshape(3, 3).copy()
+        translation = np.asarray([float(v) for v in translation], dtype=float)
+        if translation.shape != (3,):
+            raise ValueError("translation must be [x, y, z]")
+        goal_pos = pos + translation if relative else translation
+        goal_rot = None
+        if euler_rotation:
+            if len(euler_rotation) != 3:
+                raise ValueError("euler_rotation must be [rx, ry, rz]")
+            delta = quat_to_matrix(euler_to_quat(*(float(v) for v in euler_rotation)))
+            goal_rot = delta @ rot if relative else delta
+        return body, pos, rot, goal_pos, goal_rot
+
+    def solve_ik(self, body: int, pos, rot=None, start=None, iterations: int = 200) -> tuple[np.ndarray, float, float]:
+        """Joint values (clamped to the limits) putting body `body`'s origin at `pos` (and its frame at
+        `rot`), from `start` (default: the current joints): damped least squares on MuJoCo's Jacobian.
+        Returns (joints, remaining distance m, remaining angle rad)."""
+        m, d, servos = self.sim.model, self._scratch, self.servos
+        d.qpos[:] = self.sim.data.qpos
+        q = np.array(servos.positions() if start is None else start, dtype=float)
+        cols = servos.dof
+        jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+        tol_p, tol_a = self.properties.DistanceTolerance, self.properties.AngleTolerance
+        err_p = err_a = math.inf
+        for _ in range(iterations):
+            d.qpos[servos.qpos] = q
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            ep = np.asarray(pos, dtype=float) - d.xpos[body]
+            err_p = float(np.linalg.norm(ep))
+            if rot is not None:
+                er = _rotation_error(np.asarray(rot), d.xmat[body].reshape(3, 3))
+                err_a = float(np.linalg.norm(er))
+            else:
+                er, err_a = np.zeros(0), 0.0
+            if err_p < tol_p / 20 and err_a < tol_a / 20:
+                break
+            mujoco.mj_jacBody(m, d, jacp, jacr, body)
+            jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], jacr[:, cols]])
+            err = ep if rot is None else np.concatenate([ep, er])
+            dq = jac.T @ np.linalg.solve(jac @ jac.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
+            biggest = float(np.max(np.abs(dq))) if len(dq) else 0.0
+            if biggest > IK_MAX_STEP:
+                dq *= IK_MAX_STEP / biggest
+            q = servos.clamp(q + dq)
+        return q, err_p, err_a
+
+    @service
+    def place_IK_target(self, name: str, translation: list[float], euler_rotation: list[float] | None = None,
+                        relative: bool = True) -> None:
+        """Put the IK target `name` at `translation` (world frame, m; added to its current position when
+        `relative`) and, if given, turn it by `euler_rotation` (XYZ Euler in the world frame, rad; from its
+        current orientation when `relative`), at once: the joints jump to the inverse kinematics solution.
+        If the target is out of reach the arm goes as near as it can and the call fails, saying how far."""
+        body, _, _, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
+        q, err_p, err_a = self.solve_ik(body, goal_pos, goal_rot)
+        self._stop_motions()
+        self.joint_speed.clear()
+        self._set_targets(q)
+        self.servos.teleport(q)
+        self._check_reached(name, err_p, err_a)
+
+    def _check_reached(self, name: str, err_p: float, err_a: float) -> None:
+        p = self.properties
+        if err_p > p.DistanceTolerance or err_a > p.AngleTolerance:
+            raise ValueError(f"IK target {name} out of reach: the arm stops {err_p:.3f} m"
+                             f"{f' and {err_a:.3f} rad' if err_a > p.AngleTolerance else ''} away from it")
+
+    @async_service(interruptible=True)
+    def move_IK_target(self, name: str, translation: list[float], euler_rotation: list[float] | None = None,
+                       relative: bool = True, linear_speed: float | None = None,
+                       radial_speed: float | None = None) -> None:
+        """Move the IK target `name` to `translation` / `euler_rotation` (as `place_IK_target`) in a straight
+        line at `linear_speed` m/s (default IKLinearSpeed), turning at `radial_speed` rad/s (default
+        IKRotationSpeed); the joints follow by inverse kinematics. Answers SUCCESS when the target is
+        reached within DistanceTolerance (and AngleTolerance), FAILED if it is out of reach."""
+        body, pos, rot, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
+        p = self.properties
+        lspeed = abs(float(linear_speed)) if linear_speed else p.IKLinearSpeed
+        rspeed = abs(float(radial_speed)) if radial_speed else p.IKRotationSpeed
+        duration = float(np.linalg.norm(goal_pos - pos)) / lspeed
+        if goal_rot is not None:
+            duration = max(duration, float(np.linalg.norm(_rotation_error(goal_rot, rot))) / rspeed)
+        self._trajectory = None
+        self.joint_speed.clear()
+        self._ik_move = {"name": name, "body": body, "pos": pos, "rot": rot, "goal_pos": goal_pos,
+                         "goal_rot": goal_rot, "t0": self.sim.clock.now(), "duration": duration}
+
+    def _exec_ik_move(self) -> None:
+        move, servos, d = self._ik_move, self.servos, self.sim.data
+        elapsed = self.sim.clock.now() - move["t0"]
+        s = min(1.0, elapsed / move["duration"]) if move["duration"] > 0 else 1.0
+        pos = move["pos"] + s * (move["goal_pos"] - move["pos"])
+        rot = None if move["goal_rot"] is None else _slerp(move["rot"], move["goal_rot"], s)
+        q, _, _ = self.solve_ik(move["body"], pos, rot, start=servos.setpoint, iterations=30)
+        servos.command(q, (q - servos.setpoint) * self.frequency)
+        self._set_targets(q)
+        if s < 1.0:
+            return
+        body = move["body"]
+        err_p = float(np.linalg.norm(move["goal_pos"] - d.xpos[body]))
+        err_a = 0.0 if move["goal_rot"] is None else \
+            float(np.linalg.norm(_rotation_error(move["goal_rot"], d.xmat[body].reshape(3, 3))))
+        p = self.properties
+        if err_p < p.DistanceTolerance and err_a < p.AngleTolerance:
+            self._ik_move = None
+            self.completed("SUCCESS")
+        elif elapsed > move["duration"] + IK_GIVE_UP_S:
+            self._ik_move = None
+            self.completed("FAILED", f"IK target {move['name']} out of reach: the arm stops {err_p:.3f} m away")
+
+    # ------------------------------------------------------------------ cancel
+    def interrupt(self) -> None:
+        """A cancelled (or preempted) movement stops where the arm is."""
+        self._stop_motions()
+        self.joint_speed.clear()
+        q = self.servos.positions()
+        self._set_targets(q)
+        self.servos.command(q)
+
+
+def _rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
+    """Rotation vector (world frame, rad) turning `current` into `target`."""
+    quat = matrix_to_quat(np.asarray(target) @ np.asarray(current).T)
+    vel = np.zeros(3)
+    mujoco.mju_quat2Vel(vel, quat, 1.0)
+    return vel
+
+
+def _slerp(r0: np.ndarray, r1: np.ndarray, s: float) -> np.ndarray:
+    q0, q1 = matrix_to_quat(r0), matrix_to_quat(r1)
+    dot = float(q0 @ q1)
+    if dot < 0:
+        q1, dot = -q1, -dot
+    if dot > 0.9995:
+        q = q0 + s * (q1 - q0)
+    else:
+        theta = math.acos(dot)
+        q = (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
+    return quat_to_matrix(q / np.linalg.norm(q))
+
+
+COMPONENT = Armature
