@@ -341,16 +341,43 @@ class Armature(Actuator):
             goal_rot = delta @ rot if relative else delta
         return body, pos, rot, goal_pos, goal_rot
 
-    def solve_ik(self, body: int, pos, rot=None, start=None, iterations: int = 200) -> tuple[np.ndarray, float, float]:
-        """Joint values (clamped to the limits) putting body `body`'s origin at `pos` (and its frame at
-        `rot`), from `start` (default: the current joints): damped least squares on MuJoCo's Jacobian.
-        Returns (joints, remaining distance m, remaining angle rad)."""
+    def solve_ik(self, body: int, pos, rot=None, start=None, iterations: int = 200,
+                 restarts: int = 0) -> tuple[np.ndarray, float, float]:
+        """Joint values (within the limits) putting body `body`'s origin at `pos` (and its frame at `rot`),
+        from `start` (default: the current joints): damped least squares on MuJoCo's Jacobian, joints at a
+        limit that the step would push further left out of the step. If that does not reach the target,
+        up to `restarts` more tries from the zero pose and from fixed pseudo-random poses (deterministic).
+        Returns (joints, remaining distance m, remaining angle rad) of the best try."""
+        p = self.properties
+        best = None
+        seeds = np.random.default_rng(0)
+        first = np.array(self.servos.positions() if start is None else start, dtype=float)
+        for attempt in range(restarts + 1):
+            if attempt == 0:
+                q0 = first
+            elif attempt == 1:
+                q0 = self.servos.clamp(np.zeros_like(first))
+            else:
+                lo = np.where(self.servos.limited, self.servos.range[:, 0], -math.pi)
+                hi = np.where(self.servos.limited, self.servos.range[:, 1], math.pi)
+                q0 = lo + seeds.random(len(first)) * (hi - lo)
+            q, err_p, err_a = self._dls(body, pos, rot, q0, iterations)
+            score = err_p + err_a * 0.1
+            if best is None or score < best[0]:
+                best = (score, q, err_p, err_a)
+            if err_p <= p.DistanceTolerance / 2 and err_a <= p.AngleTolerance / 2:
+                break
+        return best[1], best[2], best[3]
+
+    def _dls(self, body: int, pos, rot, q, iterations: int) -> tuple[np.ndarray, float, float]:
         m, d, servos = self.sim.model, self._scratch, self.servos
         d.qpos[:] = self.sim.data.qpos
-        q = np.array(servos.positions() if start is None else start, dtype=float)
+        q = servos.clamp(q)
         cols = servos.dof
         jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
         tol_p, tol_a = self.properties.DistanceTolerance, self.properties.AngleTolerance
+        lo = np.where(servos.limited, servos.range[:, 0], -np.inf)
+        hi = np.where(servos.limited, servos.range[:, 1], np.inf)
         err_p = err_a = math.inf
         for _ in range(iterations):
             d.qpos[servos.qpos] = q
@@ -361,14 +388,21 @@ class Armature(Actuator):
             if rot is not None:
                 er = _rotation_error(np.asarray(rot), d.xmat[body].reshape(3, 3))
                 err_a = float(np.linalg.norm(er))
+                err = np.concatenate([ep, er])
             else:
-                er, err_a = np.zeros(0), 0.0
+                err, err_a = ep, 0.0
             if err_p < tol_p / 20 and err_a < tol_a / 20:
                 break
             mujoco.mj_jacBody(m, d, jacp, jacr, body)
             jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], jacr[:, cols]])
-            err = ep if rot is None else np.concatenate([ep, er])
-            dq = jac.T @ np.linalg.solve(jac @ jac.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
+            free = np.ones(len(q), dtype=bool)
+            for _ in range(len(q)):  # joints stuck at a limit leave the step
+                j = jac * free
+                dq = j.T @ np.linalg.solve(j @ j.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
+                stuck = free & (((q <= lo + 1e-9) & (dq < 0)) | ((q >= hi - 1e-9) & (dq > 0)))
+                if not stuck.any():
+                    break
+                free &= ~stuck
             biggest = float(np.max(np.abs(dq))) if len(dq) else 0.0
             if biggest > IK_MAX_STEP:
                 dq *= IK_MAX_STEP / biggest
@@ -383,7 +417,7 @@ class Armature(Actuator):
         current orientation when `relative`), at once: the joints jump to the inverse kinematics solution.
         If the target is out of reach the arm goes as near as it can and the call fails, saying how far."""
         body, _, _, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
-        q, err_p, err_a = self.solve_ik(body, goal_pos, goal_rot)
+        q, err_p, err_a = self.solve_ik(body, goal_pos, goal_rot, restarts=8)
         self._stop_motions()
         self.joint_speed.clear()
         self._set_targets(q)
