@@ -127,3 +127,51 @@ class Connection:
             self.sock.close()
         except OSError:
             pass
+
+
+class Server:
+    """A listening socket and its clients, all polled by the same Poller. Subclasses say what a client's
+    bytes mean (`received`) and what leaving means (`dropped`)."""
+
+    def __init__(self, poller: Poller, host: str, port: int, attempts: int = 1):
+        self.poller = poller
+        self.server = listen(host, port, attempts)
+        self.port = self.server.getsockname()[1]
+        self.clients: list[Connection] = []
+        poller.register(self.server, self._accept)
+
+    def _accept(self, server: socket.socket) -> None:
+        while True:
+            try:
+                sock, _ = server.accept()
+            except OSError:  # nothing more to accept now (BlockingIOError), or a client already gone
+                return
+            conn = Connection(sock)
+            self.clients.append(conn)
+            self.poller.register(sock, lambda s, c=conn: self._readable(c))
+
+    def _readable(self, conn: Connection) -> None:
+        data = conn.receive()
+        if data is None:
+            self.drop(conn)
+        else:
+            self.received(conn, data)
+
+    def received(self, conn: Connection, data: bytes) -> None:
+        """New bytes from a client."""
+
+    def dropped(self, conn: Connection) -> None:
+        """A client went away (or was dropped)."""
+
+    def drop(self, conn: Connection) -> None:
+        self.poller.unregister(conn.sock)
+        conn.close()
+        if conn in self.clients:
+            self.clients.remove(conn)
+            self.dropped(conn)
+
+    def close(self) -> None:
+        for conn in list(self.clients):
+            self.drop(conn)
+        self.poller.unregister(self.server)
+        self.server.close()

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import json
 import logging
-import socket
 
-from morsec.middleware.poller import Connection, Poller, listen
+from morsec.middleware.poller import Connection, Poller, Server
 from morsec.middleware.socket_streams import _plain, decode
 from morsec.services.requests import FAILED, Request, RequestManager
 
@@ -24,31 +23,13 @@ def format_response(request_id: str, status: str, result) -> bytes:
     return (line + "\n").encode("utf-8")
 
 
-class ServiceServer:
+class ServiceServer(Server):
     def __init__(self, poller: Poller, requests: RequestManager, host: str, port: int, attempts: int):
-        self.poller = poller
+        super().__init__(poller, host, port, attempts)
         self.requests = requests
-        self.server = listen(host, port, attempts)
-        self.port = self.server.getsockname()[1]
-        self.clients: list[Connection] = []
         self.discarding: set[Connection] = set()
-        poller.register(self.server, self._accept)
 
-    def _accept(self, server: socket.socket) -> None:
-        while True:
-            try:
-                sock, _ = server.accept()
-            except (BlockingIOError, InterruptedError, OSError):
-                return
-            conn = Connection(sock)
-            self.clients.append(conn)
-            self.poller.register(sock, lambda s, c=conn: self._readable(c))
-
-    def _readable(self, conn: Connection) -> None:
-        data = conn.receive()
-        if data is None:
-            self._drop(conn)
-            return
+    def received(self, conn: Connection, data: bytes) -> None:
         conn.inbuf += data
         *lines, conn.inbuf = conn.inbuf.split(b"\n")  # one pass, however many lines arrived
         for line in lines:
@@ -103,27 +84,20 @@ class ServiceServer:
         except (TypeError, ValueError) as err:
             line = format_response(request_id, FAILED, f"result cannot be serialised: {err}")
         if not conn.send(line):
-            self._drop(conn)
+            self.drop(conn)
 
     def flush(self) -> None:
         for conn in list(self.clients):
             if conn.outbuf and not conn.flush():
-                self._drop(conn)
+                self.drop(conn)
 
-    def _drop(self, conn: Connection) -> None:
+    def dropped(self, conn: Connection) -> None:
         self.requests.drop_client(conn)
-        self.poller.unregister(conn.sock)
         self.discarding.discard(conn)
-        conn.close()
-        if conn in self.clients:
-            self.clients.remove(conn)
 
     def close(self) -> None:
         self.flush()
-        for conn in list(self.clients):
-            self._drop(conn)
-        self.poller.unregister(self.server)
-        self.server.close()
+        super().close()
 
 
 def _first_token(buf: bytes) -> str | None:

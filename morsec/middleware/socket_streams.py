@@ -5,11 +5,10 @@ from __future__ import annotations
 import json
 import logging
 import math
-import socket
 
 import numpy as np
 
-from morsec.middleware.poller import Connection, Poller, listen
+from morsec.middleware.poller import Connection, Poller, Server
 
 log = logging.getLogger("morsec.middleware.socket")
 
@@ -49,34 +48,14 @@ def _plain(value):
     raise TypeError(f"cannot serialise {type(value).__name__}")
 
 
-class SocketStream:
+class SocketStream(Server):
     def __init__(self, poller: Poller, component: str, direction: str, host: str, port: int, hint_only: bool):
-        self.poller = poller
+        super().__init__(poller, host, port, attempts=100 if hint_only else 1)
         self.component = component
         self.direction = direction
-        self.server = listen(host, port, attempts=100 if hint_only else 1)
-        self.port = self.server.getsockname()[1]
-        self.clients: list[Connection] = []
         self.pending: dict | None = None  # last complete actuator message, not yet applied
-        poller.register(self.server, self._accept)
 
-    def _accept(self, server: socket.socket) -> None:
-        while True:
-            try:
-                sock, _ = server.accept()
-            except (BlockingIOError, InterruptedError):
-                return
-            except OSError:
-                return
-            conn = Connection(sock)
-            self.clients.append(conn)
-            self.poller.register(sock, lambda s, c=conn: self._readable(c))
-
-    def _readable(self, conn: Connection) -> None:
-        data = conn.receive()
-        if data is None:
-            self._drop(conn)
-            return
+    def received(self, conn: Connection, data: bytes) -> None:
         if self.direction == "OUT":
             return  # clients of a sensor stream have nothing to say; reading only notices them leaving
         conn.inbuf += data
@@ -108,16 +87,4 @@ class SocketStream:
     def publish(self, line: bytes) -> None:
         for conn in list(self.clients):
             if not conn.send(line, droppable=True):
-                self._drop(conn)
-
-    def _drop(self, conn: Connection) -> None:
-        self.poller.unregister(conn.sock)
-        conn.close()
-        if conn in self.clients:
-            self.clients.remove(conn)
-
-    def close(self) -> None:
-        for conn in list(self.clients):
-            self._drop(conn)
-        self.poller.unregister(self.server)
-        self.server.close()
+                self.drop(conn)

@@ -3,54 +3,27 @@ connected to the sync port, each line it sends (or each read without a newline) 
 
 from __future__ import annotations
 
-import socket
-
-from morsec.middleware.poller import Connection, Poller, listen
+from morsec.middleware.poller import Connection, Poller, Server
 
 
-class SyncServer:
+class SyncServer(Server):
     def __init__(self, poller: Poller, host: str, port: int):
-        self.poller = poller
-        self.server = listen(host, port)
-        self.port = self.server.getsockname()[1]
-        self.clients: list[Connection] = []
+        super().__init__(poller, host, port)
         self.steps = 0
-        poller.register(self.server, self._accept)
 
     @property
     def engaged(self) -> bool:
         return bool(self.clients)
 
-    def _accept(self, server: socket.socket) -> None:
-        while True:
-            try:
-                sock, _ = server.accept()
-            except (BlockingIOError, InterruptedError, OSError):
-                return
-            conn = Connection(sock)
-            self.clients.append(conn)
-            self.poller.register(sock, lambda s, c=conn: self._readable(c))
-
-    def _readable(self, conn: Connection) -> None:
-        data = conn.receive()
-        if data is None:
-            self.poller.unregister(conn.sock)
-            conn.close()
-            self.clients.remove(conn)
-            if not self.clients:
-                self.steps = 0
-            return
+    def received(self, conn: Connection, data: bytes) -> None:
         self.steps += data.count(b"\n") or (1 if data else 0)
+
+    def dropped(self, conn: Connection) -> None:
+        if not self.clients:
+            self.steps = 0
 
     def take(self) -> bool:
         if self.steps > 0:
             self.steps -= 1
             return True
         return False
-
-    def close(self) -> None:
-        for conn in self.clients:
-            self.poller.unregister(conn.sock)
-            conn.close()
-        self.poller.unregister(self.server)
-        self.server.close()

@@ -144,7 +144,10 @@ class Armature(Actuator):
         return np.where(self.servos.prismatic, p.DistanceTolerance, p.AngleTolerance)
 
     def _reached(self, targets) -> bool:
-        return bool(np.all(np.abs(np.asarray(targets) - self.servos.positions()) < self._tolerances()))
+        """Every joint within tolerance of its target, and settled (slower than 10 tolerances per second)."""
+        tol = self._tolerances()
+        speed = np.abs(self.sim.data.qvel[self.servos.dof])
+        return bool(np.all(np.abs(np.asarray(targets) - self.servos.positions()) < tol) and np.all(speed < 10 * tol))
 
     def _stop_motions(self) -> None:
         """A joint-level command ends IK moves and trajectories (MORSE suspends its IK targets)."""
@@ -333,7 +336,9 @@ class Armature(Actuator):
         if translation.shape != (3,):
             raise ValueError("translation must be [x, y, z]")
         goal_pos = pos + translation if relative else translation
-        goal_rot = None
+        # no rotation given: the target keeps its orientation if the arm can hold one (6 joints or more:
+        # a gripper pointing down stays pointing down), else only its position counts
+        goal_rot = rot if len(self.names) >= 6 else None
         if euler_rotation:
             if len(euler_rotation) != 3:
                 raise ValueError("euler_rotation must be [rx, ry, rz]")
@@ -466,7 +471,8 @@ class Armature(Actuator):
         err_a = 0.0 if move["goal_rot"] is None else \
             float(np.linalg.norm(_rotation_error(move["goal_rot"], d.xmat[body].reshape(3, 3))))
         p = self.properties
-        if err_p < p.DistanceTolerance and err_a < p.AngleTolerance:
+        settled = bool(np.all(np.abs(d.qvel[servos.dof]) < 10 * self._tolerances()))
+        if err_p < p.DistanceTolerance and err_a < p.AngleTolerance and settled:
             self._ik_move = None
             self.completed("SUCCESS")
         elif elapsed > move["duration"] + IK_GIVE_UP_S:

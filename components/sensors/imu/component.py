@@ -1,6 +1,5 @@
 import datetime
 import logging
-from functools import lru_cache
 from typing import Literal
 
 import mujoco
@@ -8,6 +7,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.geomagnetism import decimal_year, field_in_scene
 from morsec.geometry import matrix_to_quat
 
 log = logging.getLogger("morsec.sensors.imu")
@@ -87,32 +87,9 @@ class IMU(Sensor):
             return self.field
         pos = self.position()
         if self.field_at is None or np.linalg.norm(pos - self.field_at) > RELOCATE_M:
-            lat, lon, alt = self.geo.to_geodetic(pos)
-            north, east, down = wmm_ned(lat, lon, alt, decimal_year(datetime.date.today()))
-            self.field = self.geo.from_enu([east, north, -down])
+            self.field = field_in_scene(self.geo, pos, decimal_year(datetime.date.today()))
             self.field_at = pos.copy()
         return self.field
-
-
-def decimal_year(day: datetime.date) -> float:
-    start = datetime.date(day.year, 1, 1)
-    length = (datetime.date(day.year + 1, 1, 1) - start).days
-    return day.year + (day - start).days / length
-
-
-@lru_cache(maxsize=8)
-def _wmm(release: str):
-    from pygeomag import GeoMag
-    return GeoMag(coefficients_file=f"wmm/WMM_{release}.COF")
-
-
-def wmm_ned(lat: float, lon: float, alt_m: float, year: float) -> tuple[float, float, float]:
-    """World Magnetic Model (pygeomag): (north, east, down) field at a geodetic point, nT. The release
-    whose epoch precedes `year` is used (WMM2010 ... WMM2025), extrapolated outside its five years."""
-    release = "2025" if year >= 2025 else "2020" if year >= 2020 else "2015v2" if year >= 2015 else "2010"
-    r = _wmm(release).calculate(glat=lat, glon=lon, alt=alt_m / 1000.0, time=year,
-                                allow_date_outside_lifespan=True)
-    return float(r.x), float(r.y), float(r.z)
 
 
 COMPONENT = IMU

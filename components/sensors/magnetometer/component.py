@@ -1,10 +1,10 @@
 import datetime
-from functools import lru_cache
 
 import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.geomagnetism import decimal_year, field_in_scene
 
 RELOCATE_M = 1000.0  # the field is recomputed when the sensor has moved this far
 # the sensor frame (x forward, y left, z up) relabelled as the `ned` modifier relabels the scene:
@@ -45,33 +45,10 @@ class Magnetometer(Sensor):
     def default_action(self):
         pos = self.position()
         if self.field_at is None or np.linalg.norm(pos - self.field_at) > RELOCATE_M:
-            lat, lon, alt = self.geo.to_geodetic(pos)
-            north, east, down = wmm_ned(lat, lon, alt, self.year)
-            self.field = self.geo.from_enu([east, north, -down])
+            self.field = field_in_scene(self.geo, pos, self.year)
             self.field_at = pos.copy()
         x, y, z = SENSOR_TO_NED @ (self.rotation().T @ self.field)
         self.local_data.update(x=float(x), y=float(y), z=float(z))
-
-
-def decimal_year(day: datetime.date) -> float:
-    start = datetime.date(day.year, 1, 1)
-    length = (datetime.date(day.year + 1, 1, 1) - start).days
-    return day.year + (day - start).days / length
-
-
-@lru_cache(maxsize=8)
-def _wmm(release: str):
-    from pygeomag import GeoMag
-    return GeoMag(coefficients_file=f"wmm/WMM_{release}.COF")
-
-
-def wmm_ned(lat: float, lon: float, alt_m: float, year: float) -> tuple[float, float, float]:
-    """World Magnetic Model (pygeomag): (north, east, down) field at a geodetic point, nT. The release
-    whose epoch precedes `year` is used (WMM2010 ... WMM2025), extrapolated outside its five years."""
-    release = "2025" if year >= 2025 else "2020" if year >= 2020 else "2015v2" if year >= 2015 else "2010"
-    r = _wmm(release).calculate(glat=lat, glon=lon, alt=alt_m / 1000.0, time=year,
-                                allow_date_outside_lifespan=True)
-    return float(r.x), float(r.y), float(r.z)
 
 
 COMPONENT = Magnetometer
