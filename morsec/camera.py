@@ -134,7 +134,6 @@ class RendererPool:
         renderer = self.renderers.get(key)
         if renderer is None:
             from morsec.render import open_renderer
-            use_chosen_gl()
             renderer = open_renderer(self.model, key[0], key[1])
             self.renderers[key] = renderer
         return renderer
@@ -146,30 +145,6 @@ class RendererPool:
 
 
 _POOLS: "weakref.WeakKeyDictionary[Any, RendererPool]" = weakref.WeakKeyDictionary()
-
-
-def use_chosen_gl() -> None:
-    """MuJoCo reads MUJOCO_GL once, when it is first imported: a program (or a test session) that imported
-    mujoco before morsec got MuJoCo's default, GLFW, which needs a display. Hand mujoco.Renderer the
-    headless backend morsec chose (EGL or OSMesa, in MUJOCO_GL) instead."""
-    import os
-    try:
-        from mujoco.rendering.classic import gl_context
-    except ImportError:
-        return
-    wanted = os.environ.get("MUJOCO_GL", "").lower().strip()
-    chosen = getattr(gl_context, "_MUJOCO_GL", wanted)
-    if chosen == wanted or wanted not in ("egl", "osmesa"):
-        return
-    try:
-        if wanted == "egl":
-            from mujoco.egl import GLContext
-        else:
-            from mujoco.osmesa import GLContext
-    except (ImportError, OSError, RuntimeError):
-        return  # open_renderer reports what is missing
-    gl_context.GLContext = GLContext
-    gl_context._MUJOCO_GL = wanted
 
 
 def renderer_pool(sim) -> RendererPool:

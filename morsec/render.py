@@ -17,6 +17,7 @@ def open_renderer(model, width: int, height: int):
     import os
 
     import mujoco
+    use_chosen_gl()
     max_w, max_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
     if width > max_w or height > max_h:
         raise MorsecError(f"image {width}x{height} is larger than the scene's offscreen buffer {max_w}x{max_h}")
@@ -28,6 +29,30 @@ def open_renderer(model, width: int, height: int):
             backend, "libegl1 or libosmesa6 (Debian)")
         raise RuntimeFailure(f"cannot render with MUJOCO_GL={backend or '(unset)'}: {err}; install {package} "
                              "or set MUJOCO_GL=osmesa") from None
+
+
+def use_chosen_gl() -> None:
+    """MuJoCo reads MUJOCO_GL once, when it is first imported: a program (or a test session) that imported
+    mujoco before morsec got MuJoCo's default, GLFW, which needs a display. Hand mujoco.Renderer the
+    headless backend morsec chose (EGL or OSMesa, in MUJOCO_GL) instead."""
+    import os
+    try:
+        from mujoco.rendering.classic import gl_context
+    except ImportError:
+        return
+    wanted = os.environ.get("MUJOCO_GL", "").lower().strip()
+    chosen = getattr(gl_context, "_MUJOCO_GL", wanted)
+    if chosen == wanted or wanted not in ("egl", "osmesa"):
+        return
+    try:
+        if wanted == "egl":
+            from mujoco.egl import GLContext
+        else:
+            from mujoco.osmesa import GLContext
+    except (ImportError, OSError, RuntimeError):
+        return  # open_renderer reports what is missing
+    gl_context.GLContext = GLContext
+    gl_context._MUJOCO_GL = wanted
 
 
 def render_build(build_dir: Path, out: Path, camera: str | None = None, width: int = 800, height: int = 600) -> Path:

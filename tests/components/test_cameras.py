@@ -1,4 +1,4 @@
-"""Cameras (video_camera, depth_camera, depth_video_camera, kinect, velodyne_depth, vlp16, stereo_unit)
+"""Cameras (video_camera, depth_camera, depth_video_camera, kinect, velodyne, vlp16, stereo_unit)
 rendered headless by MuJoCo in running simulations, checked against numbers computable by hand: the pixels
 a box of known size covers at a known distance, the depth of a wall, the points of a room's walls."""
 
@@ -34,7 +34,7 @@ CAMERAS = {
     "depth_video_camera": ("DepthVideoCamera", 20.0, 256, 256, 1.0, 20.0, False),
     "semantic_camera": ("SemanticCamera", 20.0, 256, 256, 0.1, 100.0, True),
     "kinect": ("Kinect", 20.0, 128, 128, 0.1, 100.0, True),
-    "velodyne_depth": ("Velodyne", 20.0, 256, 256, 1.0, 20.0, False),
+    "velodyne": ("Velodyne", 20.0, 256, 256, 1.0, 20.0, False),
     "vlp16": ("VLP16_180", 10.0, 512, 256, 1.0, 20.0, False),
 }
 
@@ -487,12 +487,12 @@ def _on_walls(points: np.ndarray, half: float = 3.0) -> np.ndarray:
 def test_velodyne_depth_turns_and_keeps_its_frame(tmp_path):
     """In a 6 x 6 m room, the k-th picture (k = 0 first) looks at azimuth k * rotation: its points all lie
     on the walls and, in the fixed mounting frame, within half a field of view of that azimuth."""
-    scene = holder_scene("{name: velo, type: velodyne_depth, properties: {cam_width: 32, cam_height: 16, "
+    scene = holder_scene("{name: velo, type: velodyne, properties: {cam_width: 32, cam_height: 16, "
                          "rotation: 1.0}}", room(), height=2.0)
     fov = 2 * math.atan(16 / 35)  # across the 32 pixels
     with simulate(scene, tmp_path) as sim:
         velo = sim.component("r.velo")
-        assert CATALOGUE.get("sensors", "velodyne_depth").Properties().rotation == pytest.approx(fov)
+        assert CATALOGUE.get("sensors", "velodyne").Properties().rotation == pytest.approx(fov)
         grabs = grab_count(sim, "r.velo")
         seen = set()
         for _ in range(8):

@@ -1,4 +1,4 @@
-"""Laser scanners (laser_scanner and its presets sick, hokuyo, sick_ld_mrs, infrared, velodyne) run in
+"""Laser scanners (laser_scanner and its presets sick, hokuyo, sick_ld_mrs, infrared, velodyne_ray_cast) run in
 simulations whose numbers can be computed by hand: walls at known distances, a room of known size, the
 floor seen from a known height."""
 
@@ -20,7 +20,7 @@ from morsec.middleware.socket_streams import encode
 from morsec.testing import simulate
 
 CATALOGUE = load_catalogue(Path(__file__).parent)
-LASERS = ["laser_scanner", "sick", "hokuyo", "sick_ld_mrs", "infrared", "velodyne"]
+LASERS = ["laser_scanner", "sick", "hokuyo", "sick_ld_mrs", "infrared", "velodyne_ray_cast"]
 # id: (builder name, frequency, laser_range, scan_window, resolution, layers, number of rays)
 PRESETS = {
     "laser_scanner": ("LaserScanner", 10.0, 30.0, 180.0, 1.0, 1, 181),
@@ -28,7 +28,7 @@ PRESETS = {
     "hokuyo": ("Hokuyo", 10.0, 30.0, 270.0, 0.25, 1, 1081),
     "sick_ld_mrs": ("SickLDMRS", 4.0, 30.0, 100.0, 0.25, 4, 1604),
     "infrared": ("Infrared", 10.0, 2.0, 20.0, 1.0, 1, 21),
-    "velodyne": ("VelodyneRayCast", 60.0, 50.0, 31.5, 0.5, 1, 64),
+    "velodyne_ray_cast": ("VelodyneRayCast", 60.0, 50.0, 31.5, 0.5, 1, 64),
 }
 HEIGHT = 0.5  # of the fake robot holding the sensor: no geometry, fixed in the world
 
@@ -297,7 +297,7 @@ def test_rssi_level_adds_remission(tmp_path):
 
 
 @pytest.mark.parametrize("cid,expected", [("sick", 10), ("hokuyo", 10), ("sick_ld_mrs", 4), ("infrared", 10),
-                                          ("velodyne", 60)])
+                                          ("velodyne_ray_cast", 60)])
 def test_default_frequency(cid, expected, tmp_path):
     with simulate(holder_scene(f"{{name: laser, type: {cid}}}"), tmp_path) as sim:
         calls = count_ticks(sim, "r.laser")
@@ -364,7 +364,7 @@ def test_infrared_is_short_range(tmp_path):
 
 def test_velodyne_fan_and_rotation(tmp_path):
     # 2 m above the floor: ray i (elevation -27.75 + 0.5 i deg) meets the floor when pointing down
-    scene = holder_scene("{name: velo, type: velodyne, translate: [0.0, 0.0, 1.5]}")
+    scene = holder_scene("{name: velo, type: velodyne_ray_cast, translate: [0.0, 0.0, 1.5]}")
     h = HEIGHT + 1.5
     with simulate(scene, tmp_path) as sim:
         sim.step(1)
@@ -400,7 +400,7 @@ robots:
     type: fake_robot
     translate: [2.0, 0.0, 0.5]
     components:
-      - {name: velodyne, type: velodyne, color: [0.2, 0.2, 0.2, 0.5]}
+      - {name: velodyne, type: velodyne_ray_cast, color: [0.2, 0.2, 0.2, 0.5]}
 """
     with simulate(scene, tmp_path) as sim:
         sim.step(1)

@@ -83,7 +83,7 @@ class LaserScanner(Sensor):
     miss) and `point_list[i]` the hit point in the sensor frame (`[0, 0, 0]` on a miss). Rays go from
     -scan_window/2 (index 0, right, -y side) to +scan_window/2 every `resolution` degrees; several layers
     are stacked in elevation, top layer first. The `rssi` level adds `remission_list`. Presets: `sick`,
-    `hokuyo`, `sick_ld_mrs`, `infrared`, `velodyne`."""
+    `hokuyo`, `sick_ld_mrs`, `infrared`, `velodyne_ray_cast`."""
 
     short_descr = "Generic laser range scanner (ray fan, layers)"
     builder_name = "LaserScanner"

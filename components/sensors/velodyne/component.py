@@ -1,63 +1,66 @@
+"""MORSE's `Velodyne` builder (DepthCameraRotationZ): a depth camera that turns about its vertical axis
+after every tick."""
+
 import math
 
 import numpy as np
 from pydantic import Field
 
+from morsec.camera import optical_rotation
 from morsec.catalogue import component_class
+from morsec.geometry import euler_to_quat
 
-LaserScanner = component_class("sensors", "laser_scanner")
+DepthCamera = component_class("sensors", "depth_camera")
 
-FAN_TILT_DEG = 12.0  # the builder's arc rotation: Euler XYZ (90 deg, 12 deg, 0), i.e. a vertical fan tilted down
-STEP_RAD = 0.01745  # LaserScannerRotationZ.applyRotationZ: the fan turns this much about z after every scan
-
-
-def fan_rotation() -> np.ndarray:
-    """Ry(12 deg) @ Rx(90 deg): turns MORSE's horizontal arc into the vertical fan of VelodyneRayCast."""
-    a, t = math.radians(90.0), math.radians(FAN_TILT_DEG)
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, math.cos(a), -math.sin(a)], [0.0, math.sin(a), math.cos(a)]])
-    ry = np.array([[math.cos(t), 0.0, math.sin(t)], [0.0, 1.0, 0.0], [-math.sin(t), 0.0, math.cos(t)]])
-    return ry @ rx
+# MORSE's builder sets `rotation` to the camera's angle: the field of view of its default 35 mm lens
+FOV_35MM = 2.0 * math.atan(16.0 / 35.0)
 
 
-class VelodyneRayCast(LaserScanner):
-    """Ray-cast Velodyne (MORSE's `VelodyneRayCast` builder, class LaserScannerRotationZ): a vertical fan of
-    64 rays, 0.5 degree apart over 31.5 degrees, up to 50 m, that turns 0.01745 rad (1 degree) about the
-    sensor's z axis after every scan: at the default 60 Hz, one turn in 6 simulated seconds.
+def _quat_mul(a, b):
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return np.array([aw * bw - ax * bx - ay * by - az * bz, aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx, aw * bz + ax * by - ay * bx + az * bw])
 
-    The fan is MORSE's arc turned upright and tilted 12 degrees down: ray i has elevation
-    -27.75 + 0.5 i degrees (ray 0 lowest, ray 63 at +3.75) and, at scan k (k = 0 first), azimuth
-    k * 0.01745 rad about +z from the sensor's +x axis (mod 2 pi). The sensor body does not turn: points
-    are given in its (fixed) mounting frame, so consecutive scans add up to a 3-D cloud without knowing
-    the azimuth. See `laser_scanner` for the fields and levels."""
 
-    short_descr = "Rotating vertical ray fan (Velodyne-like): 64 rays, 31.5 deg, 50 m, 1 deg per scan"
-    builder_name = "VelodyneRayCast"
-    frequency = 60.0
+class Velodyne(DepthCamera):
+    """A depth camera that turns: after each tick, whether it grabbed or not, the camera turns `rotation`
+    radians about the component's +z (to the left, counter-clockwise seen from above), so that
+    consecutive pictures sweep around the sensor; with the defaults (256 x 256 pixels, 35 mm lens, 20 Hz)
+    each picture covers 49.1 degrees and the camera turns by exactly that much: a full turn every 7.3
+    pictures, 2.7 turns per second. Tick k (k = 0 first) looks at azimuth k * rotation (mod 2 pi) from the
+    component's +x.
 
-    class Properties(LaserScanner.Properties):
-        laser_range: float = Field(50.0, gt=0, description="detection range, m; can be changed while running")
-        scan_window: float = Field(31.5, ge=0, le=360, description="vertical angle covered by the fan, deg")
-        resolution: float = Field(0.5, gt=0, description="angle between two rays of the fan, deg")
-        Visible_arc: bool = Field(True, description="MORSE shows the arc in the 3D view; accepted, no effect headless")
+    The points are those of `depth_camera` but expressed in the optical frame of the camera **at
+    azimuth 0** (x right, y down, z forward along the component's +x): the component's frame does not
+    turn, only its camera, so consecutive messages add up to a 360-degree cloud without knowing the
+    azimuth. `nb_points`, `keep_list`, `keep_resolution` and the socket message are depth_camera's."""
 
-    def ray_directions(self) -> np.ndarray:
-        return super().ray_directions() @ fan_rotation().T
+    short_descr = "Depth camera turning about its vertical axis each tick (MORSE's Velodyne)"
+    builder_name = "Velodyne"
+    frequency = 20.0
+
+    class Properties(DepthCamera.Properties):
+        rotation: float = Field(FOV_35MM, description="angle the camera turns after each tick, rad (default: the "
+                                "field of view of the default 35 mm lens, 2 atan(16/35) = 0.857 rad)")
 
     def start(self) -> None:
         super().start()
-        self.azimuth = 0.0  # of the next scan, rad
-        self._fan = self._dirs
-        self._turned = np.empty_like(self._fan)
+        self.azimuth = 0.0  # of the next picture, rad
+        self._quat0 = self.sim.model.cam_quat[self.view.id].copy()
 
-    def world_directions(self, rot: np.ndarray) -> np.ndarray:
-        c, s = math.cos(self.azimuth), math.sin(self.azimuth)
-        np.matmul(self._fan, np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]), out=self._turned)
-        np.matmul(self._turned, rot.T, out=self._vec)
-        return self._turned
+    def grab(self) -> None:
+        super().grab()
+        points = self.local_data["points"]
+        if self.azimuth and len(points):
+            back = optical_rotation(self.azimuth).astype(np.float32)
+            self.local_data["points"] = np.ascontiguousarray(points @ back.T)
 
     def default_action(self) -> None:
         super().default_action()
-        self.azimuth = (self.azimuth + STEP_RAD) % (2.0 * math.pi)
+        self.azimuth = (self.azimuth + float(self.properties.rotation)) % (2.0 * math.pi)
+        turn = euler_to_quat(0.0, 0.0, self.azimuth)
+        self.sim.model.cam_quat[self.view.id] = _quat_mul(turn, self._quat0)
 
 
-COMPONENT = VelodyneRayCast
+COMPONENT = Velodyne
