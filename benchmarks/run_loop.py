@@ -1,14 +1,17 @@
-"""morsec's main loop against a bare MuJoCo loop over the same compiled model (target: ratio <= 1.15).
+"""morsec's main loop against a bare MuJoCo loop over the same compiled model, for two reference scenes:
 
-The reference scene: an ATRV with a pose sensor, an odometry sensor and a motion_vw actuator, all at
-60 Hz with socket streams, no client connected, `fixed_step`. The morsec side is `Simulation.run(duration)`,
+- reference (target ratio <= 1.15): an ATRV with a pose sensor, an odometry sensor and a motion_vw
+  actuator, all at 60 Hz with socket streams, no client connected, `fixed_step`;
+- sensors (target <= 1.3): an ATRV in the boxes room with a Sick laser at 10 Hz, an IMU and a GPS at
+  60 Hz with noise modifiers, and motion_vw.
+ The morsec side is `Simulation.run(duration)`,
 the whole loop as `morsec run` drives it: socket polling, actuator and sensor ticks (default_action,
 timestamps, modifiers), the clock, the service flush. The bare side is `mujoco.mj_step(m, d, nstep)` per
 frame, with the same number of physics sub-steps per frame, on a fresh MjData of the same scene.xml, for
 the same number of frames. Runs alternate (morsec, bare, morsec, ...) so that both see the same machine
 load, and the best of each is kept.
 
-    .venv/bin/python benchmarks/run_loop.py [--duration 20] [--repeats 5] [--profile]
+    .venv/bin/python benchmarks/run_loop.py [--scene reference|sensors] [--duration 20] [--repeats 5] [--profile]
 
 Prints both wall times, their ratio, the overhead per frame (split into the loop's own cost, measured
 with every component deactivated, and the components' ticks) and the real-time factors.
@@ -37,7 +40,7 @@ from morsec.catalogue import load_catalogue  # noqa: E402
 from morsec.compiler.build import build_scene  # noqa: E402
 from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
 
-TARGET = 1.15
+SCENES = {}  # name -> (description, YAML, target ratio)
 
 SCENE = """\
 environment:
@@ -51,6 +54,24 @@ robots:
       - {name: odometry, type: odometry, frequency: 60, streams: [socket]}
       - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
 """
+SCENES["reference"] = ("ATRV: pose, odometry, motion_vw at 60 Hz, socket streams", SCENE, 1.15)
+
+SENSORS = """\
+environment:
+  name: indoors-1/boxes
+  time: {strategy: fixed_step, frequency: 60}
+  properties: {longitude: 1.4437, latitude: 43.6045, altitude: 146.0}
+  seed: 1
+robots:
+  - name: robot
+    type: atrv
+    components:
+      - {name: sick, type: sick, translate: [0.5, 0.0, 0.4], frequency: 10, streams: [socket]}
+      - {name: imu, type: imu, frequency: 60, streams: [socket], modifiers: [{name: noise}]}
+      - {name: gps, type: gps, frequency: 60, streams: [socket], modifiers: [{name: noise}]}
+      - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
+"""
+SCENES["sensors"] = ("ATRV in the boxes room: Sick laser at 10 Hz, IMU and GPS at 60 Hz with noise", SENSORS, 1.3)
 
 
 def free_block(count: int) -> int:
@@ -102,54 +123,65 @@ def run_bare(build: Path, frames: int, substeps: int) -> float:
     return time.perf_counter() - start
 
 
+def measure(build: Path, description: str, target: float, args) -> None:
+    catalogue = load_catalogue(ROOT)
+    loop = json.loads((build / "manifest.json").read_text())["loop"]
+    substeps, frequency = int(loop["physics_substeps"]), float(loop["frequency"])
+
+    run_morsec(build, catalogue, 1.0)  # warm-up: imports, caches
+    best_morsec = best_bare = best_loop = float("inf")
+    frames = 0
+    for _ in range(args.repeats):
+        wall, frames = run_morsec(build, catalogue, args.duration)
+        best_morsec = min(best_morsec, wall)
+        best_bare = min(best_bare, run_bare(build, frames, substeps))
+        best_loop = min(best_loop, run_morsec(build, catalogue, args.duration, components=False)[0])
+
+    simulated = frames / frequency
+    ratio = best_morsec / best_bare
+    print(f"scene: {description}")
+    print(f"loop: {frequency:g} Hz x {substeps} physics sub-steps (timestep {loop['timestep']:.6g} s), "
+          f"{frames} frames = {simulated:g} simulated s, best of {args.repeats}")
+    print(f"bare mujoco.mj_step : {best_bare:8.3f} s wall  ({best_bare / frames * 1e6:7.1f} us/frame, "
+          f"real-time factor {simulated / best_bare:7.1f})")
+    print(f"morsec Simulation   : {best_morsec:8.3f} s wall  ({best_morsec / frames * 1e6:7.1f} us/frame, "
+          f"real-time factor {simulated / best_morsec:7.1f})")
+    print(f"overhead            : {(best_morsec - best_bare) / frames * 1e6:8.1f} us/frame, of which the loop "
+          f"itself (components deactivated) {(best_loop - best_bare) / frames * 1e6:.1f} and the components' "
+          f"ticks {(best_morsec - best_loop) / frames * 1e6:.1f}")
+    print(f"ratio morsec / bare : {ratio:8.3f}  (target <= {target}) {'OK' if ratio <= target else 'ABOVE TARGET'}")
+
+    if args.profile:
+        profile = cProfile.Profile()
+        run_morsec(build, catalogue, args.duration, profile)
+        out = io.StringIO()
+        pstats.Stats(profile, stream=out).sort_stats("tottime").print_stats(15)
+        print(out.getvalue())
+    print()
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--duration", type=float, default=20.0, help="simulated seconds per run")
     parser.add_argument("--repeats", type=int, default=5, help="runs of each side; the best is kept")
     parser.add_argument("--build", type=Path, help="an existing build folder instead of the reference scene")
     parser.add_argument("--profile", action="store_true", help="also profile one morsec run (cProfile)")
+    parser.add_argument("--scene", choices=sorted(SCENES), help="only this reference scene (default: all)")
     args = parser.parse_args(argv)
 
-    with tempfile.TemporaryDirectory() as tmp:
+    names = [args.scene] if args.scene else list(SCENES)
+    for name in names:
+        with tempfile.TemporaryDirectory() as tmp:
+            if args.build:
+                build, description, target = args.build, str(args.build), SCENES["reference"][2]
+            else:
+                description, text, target = SCENES[name]
+                source = Path(tmp) / f"{name}.yaml"
+                source.write_text(text)
+                build = build_scene(source, Path(tmp) / "build")
+            measure(build, description, target, args)
         if args.build:
-            build = args.build
-        else:
-            source = Path(tmp) / "run_loop.yaml"
-            source.write_text(SCENE)
-            build = build_scene(source, Path(tmp) / "build")
-        catalogue = load_catalogue(ROOT)
-        loop = json.loads((build / "manifest.json").read_text())["loop"]
-        substeps, frequency = int(loop["physics_substeps"]), float(loop["frequency"])
-
-        run_morsec(build, catalogue, 1.0)  # warm-up: imports, caches
-        best_morsec = best_bare = best_loop = float("inf")
-        frames = 0
-        for _ in range(args.repeats):
-            wall, frames = run_morsec(build, catalogue, args.duration)
-            best_morsec = min(best_morsec, wall)
-            best_bare = min(best_bare, run_bare(build, frames, substeps))
-            best_loop = min(best_loop, run_morsec(build, catalogue, args.duration, components=False)[0])
-
-        simulated = frames / frequency
-        ratio = best_morsec / best_bare
-        print(f"scene: {'reference (ATRV: pose, odometry, motion_vw at 60 Hz, socket streams)' if not args.build else build}")
-        print(f"loop: {frequency:g} Hz x {substeps} physics sub-steps (timestep {loop['timestep']:.6g} s), "
-              f"{frames} frames = {simulated:g} simulated s, best of {args.repeats}")
-        print(f"bare mujoco.mj_step : {best_bare:8.3f} s wall  ({best_bare / frames * 1e6:7.1f} us/frame, "
-              f"real-time factor {simulated / best_bare:7.1f})")
-        print(f"morsec Simulation   : {best_morsec:8.3f} s wall  ({best_morsec / frames * 1e6:7.1f} us/frame, "
-              f"real-time factor {simulated / best_morsec:7.1f})")
-        print(f"overhead            : {(best_morsec - best_bare) / frames * 1e6:8.1f} us/frame, of which the loop "
-              f"itself (components deactivated) {(best_loop - best_bare) / frames * 1e6:.1f} and the components' "
-              f"ticks {(best_morsec - best_loop) / frames * 1e6:.1f}")
-        print(f"ratio morsec / bare : {ratio:8.3f}  (target <= {TARGET}) {'OK' if ratio <= TARGET else 'ABOVE TARGET'}")
-
-        if args.profile:
-            profile = cProfile.Profile()
-            run_morsec(build, catalogue, args.duration, profile)
-            out = io.StringIO()
-            pstats.Stats(profile, stream=out).sort_stats("tottime").print_stats(15)
-            print(out.getvalue())
+            break
     return 0
 
 
