@@ -37,5 +37,5 @@ box.set_mass(0.2)
 box.properties(Label='box', Object=True, Graspable=True)
 
 env = Environment('empty')
-env.set_camera_location([-1.0, -2.2, 1.9])
-env.set_camera_rotation([1.05, 0.0, -0.4])
+env.set_camera_location([-0.2, -2.6, 1.6])
+env.set_camera_rotation([1.3, 0.0, -0.2])

@@ -43,5 +43,5 @@ blue_ball.color(0.1, 0.3, 0.9)
 blue_ball.properties(Label='blue_ball', Object=True, Description='a blue ball')
 
 env = Environment('empty')
-env.set_camera_location([-1.6, -2.2, 1.7])
-env.set_camera_rotation([1.1, 0.0, -0.55])
+env.set_camera_location([-2.0, 0.3, 1.5])
+env.set_camera_rotation([1.2, 0.0, -1.6])

@@ -279,7 +279,9 @@ def device_links(cls, fqn: str) -> Link | None:
     name = getattr(cls, "xacro", None)
     if not name:
         return None
-    path = Path(cls.folder) / name
+    # the folder of the class that names the file: a subclass that keeps its parent's arm finds it there
+    owner = next(k for k in cls.__mro__ if "xacro" in vars(k))
+    path = Path(vars(owner).get("folder") or cls.folder) / name
     tree = copy.deepcopy(_device_tree(path, path.stat().st_mtime_ns if path.is_file() else 0))
     armature = getattr(cls, "joint_armature", {}) or {}
     for link in tree.walk():
