@@ -114,6 +114,13 @@ class Device(Component):
     # robot class attributes this component reads (e.g. motion_vw_diff: wheel_radius, wheel_track, ...):
     # checked at build time, so mounting it on a robot without them is a clear scene error
     robot_requires: ClassVar[tuple[str, ...]] = ()
+    # a device with moving parts (a pan-tilt unit, an arm) may describe them in a xacro file of its folder,
+    # placed in its own body (links `<fqn>/L`, joints `<fqn>/J`), with optional joint armature (kg m^2)
+    xacro: ClassVar[str | None] = None
+    joint_armature: ClassVar[dict[str, float]] = {}
+    # where child components attach: a body of this component's model, relative to it ("tilt" -> the
+    # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
+    mount_body: ClassVar[str | None] = None
 
     @classmethod
     def default_level(cls) -> str | None:
@@ -251,6 +258,7 @@ class Robot(Component):
     # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's)
     spawn_height: ClassVar[float] = 0.0
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
+    joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
     collision: ClassVar[bool] = True
     # components every robot of this type carries unless the scene lists one of the same name, e.g.
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
