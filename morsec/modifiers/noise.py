@@ -28,37 +28,37 @@ class PoseNoise(Modifier):
     """x, y, z += N(0, pos_std); roll, pitch, yaw += N(0, rot_std) (with _2D: x, y, yaw only)."""
 
     Params = PoseNoiseParams
+    positions = ("x", "y", "z")
+    angles = ("roll", "pitch", "yaw")
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        p = self.params
+        positions = tuple(a for a in self.positions if not (p.planar and a == "z"))
+        angles = tuple(a for a in self.angles if not (p.planar and a != "yaw"))
+        # one draw per tick for every noisy field: (field, std, is an angle)
+        self.fields = [(a, _std(p.pos_std, a), False) for a in positions] + \
+                      [(a, _std(p.rot_std, a), True) for a in angles]
+        self.stds = [std for _, std, _ in self.fields]
 
     def modify(self, data: dict) -> None:
-        p = self.params
-        axes = ("x", "y") if p.planar else ("x", "y", "z")
-        angles = ("yaw",) if p.planar else ("roll", "pitch", "yaw")
-        for axis in axes:
-            if axis in data:
-                data[axis] = float(data[axis]) + self.rng.normal(0.0, _std(p.pos_std, axis))
-        for axis in angles:
-            if axis in data:
-                data[axis] = normalize_angle(float(data[axis]) + self.rng.normal(0.0, _std(p.rot_std, axis)))
+        noise = self.rng.normal(0.0, self.stds).tolist()
+        for (field, _, angle), n in zip(self.fields, noise):
+            if field in data:
+                value = float(data[field]) + n
+                data[field] = normalize_angle(value) if angle else value
 
 
 class PositionNoise(PoseNoise):
     """x, y, z += N(0, pos_std) (GPS)."""
 
-    def modify(self, data: dict) -> None:
-        p = self.params
-        for axis in (("x", "y") if p.planar else ("x", "y", "z")):
-            if axis in data:
-                data[axis] = float(data[axis]) + self.rng.normal(0.0, _std(p.pos_std, axis))
+    angles = ()
 
 
 class OrientationNoise(PoseNoise):
     """roll, pitch, yaw += N(0, rot_std) (gyroscope)."""
 
-    def modify(self, data: dict) -> None:
-        p = self.params
-        for axis in (("yaw",) if p.planar else ("roll", "pitch", "yaw")):
-            if axis in data:
-                data[axis] = normalize_angle(float(data[axis]) + self.rng.normal(0.0, _std(p.rot_std, axis)))
+    positions = ()
 
 
 class IMUNoiseParams(ModifierParams):
@@ -71,11 +71,16 @@ class IMUNoise(Modifier):
 
     Params = IMUNoiseParams
 
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        p = self.params
+        self.stds = [_std(p.gyro_std, a) for a in "xyz"] + [_std(p.accel_std, a) for a in "xyz"]
+
     def modify(self, data: dict) -> None:
-        for field, std in (("angular_velocity", self.params.gyro_std), ("linear_acceleration", self.params.accel_std)):
+        noise = self.rng.normal(0.0, self.stds).tolist()  # one draw per tick
+        for field, n in (("angular_velocity", noise[:3]), ("linear_acceleration", noise[3:])):
             if field in data:
-                noise = [self.rng.normal(0.0, _std(std, axis)) for axis in "xyz"]
-                data[field] = [float(v) + n for v, n in zip(data[field], noise)]
+                data[field] = [float(v) + e for v, e in zip(data[field], n)]
 
 
 class OdometryNoiseParams(ModifierParams):

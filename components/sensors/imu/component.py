@@ -1,4 +1,5 @@
 import datetime
+import math
 import logging
 from typing import Literal
 
@@ -8,7 +9,7 @@ from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
 from morsec.geomagnetism import decimal_year, field_in_scene
-from morsec.geometry import matrix_to_quat
+from morsec.geometry import matrix_to_quat, transpose_apply
 
 log = logging.getLogger("morsec.sensors.imu")
 
@@ -50,13 +51,13 @@ class IMU(Sensor):
         m = self.sim.model
         mode = self.properties.ComputationMode
         self.mode = ("Velocity" if self.robot.free else "Position") if mode == "Automatic" else mode
-        self.gravity = np.array(m.opt.gravity, dtype=float)  # (0, 0, -g)
+        self.gravity = m.opt.gravity.tolist()  # (0, 0, -g)
         self.previous_time = self.sim.clock.elapsed  # simulated seconds (exact, unlike epoch timestamps)
-        self.previous_pos = self.position().copy()
-        self.previous_rot = self.rotation().copy()
-        self.previous_vel = self.velocity(local=False)[0].copy() if self.mode == "Velocity" else np.zeros(3)
+        self.previous_pos = self.position().tolist()
+        self.previous_rot = self.sim.data.xmat[self.body_id].tolist()
+        self.previous_vel = self.velocity(local=False)[0].tolist() if self.mode == "Velocity" else [0.0] * 3
         self.field_at = None  # scene position where the field was last computed
-        self.field = np.zeros(3)  # field in the scene frame, nT
+        self.field = [0.0, 0.0, 0.0]  # field in the scene frame, nT
         try:
             self.geo = self.sim.geo
         except ValueError:
@@ -68,27 +69,32 @@ class IMU(Sensor):
         dt = now - self.previous_time
         if dt < 1e-9:
             return
-        rot, pos = self.rotation().copy(), self.position().copy()
+        data = self.sim.data
+        rot = data.xmat[self.body_id].tolist()  # row-major 3x3, plain floats: this ticks every frame
+        pos = data.xpos[self.body_id].tolist()
         if self.mode == "Velocity":
             linear, angular = self.velocity(local=False)
-            vel, rates = linear.copy(), rot.T @ angular
+            vel, rates = linear.tolist(), transpose_apply(rot, angular.tolist())
         else:
-            vel = (pos - self.previous_pos) / dt
+            vel = [(p - q) / dt for p, q in zip(pos, self.previous_pos)]
             rates = np.zeros(3)
-            mujoco.mju_quat2Vel(rates, matrix_to_quat(self.previous_rot.T @ rot), dt)
-        accel = rot.T @ ((vel - self.previous_vel) / dt - self.gravity)  # specific force: gravity's reaction
+            relative = np.reshape(self.previous_rot, (3, 3)).T @ np.reshape(rot, (3, 3))
+            mujoco.mju_quat2Vel(rates, matrix_to_quat(relative), dt)
+            rates = rates.tolist()
+        g, pv = self.gravity, self.previous_vel
+        # specific force: the acceleration minus gravity (gravity's reaction), in the IMU frame
+        accel = transpose_apply(rot, [(vel[i] - pv[i]) / dt - g[i] for i in range(3)])
         self.previous_time, self.previous_pos, self.previous_rot, self.previous_vel = now, pos, rot, vel
-        self.local_data["angular_velocity"] = [float(v) for v in rates]
-        self.local_data["linear_acceleration"] = [float(v) for v in accel]
-        self.local_data["magnetic_field"] = [float(v) for v in rot.T @ self._field()]
+        self.local_data["angular_velocity"] = list(rates)
+        self.local_data["linear_acceleration"] = list(accel)
+        self.local_data["magnetic_field"] = list(transpose_apply(rot, self._field(pos)))
 
-    def _field(self):
+    def _field(self, pos):
         if self.geo is None:
             return self.field
-        pos = self.position()
-        if self.field_at is None or np.linalg.norm(pos - self.field_at) > RELOCATE_M:
-            self.field = field_in_scene(self.geo, pos, decimal_year(datetime.date.today()))
-            self.field_at = pos.copy()
+        if self.field_at is None or math.dist(pos, self.field_at) > RELOCATE_M:
+            self.field = field_in_scene(self.geo, pos, decimal_year(datetime.date.today())).tolist()
+            self.field_at = pos
         return self.field
 
 
