@@ -24,7 +24,24 @@ class PoseNoiseParams(ModifierParams):
     planar: bool = Field(False, alias="_2D", description="_2D: only x, y and yaw")
 
 
-class PoseNoise(Modifier):
+BATCH = 512  # ticks of noise drawn at once: one numpy call per 512 ticks instead of one per tick
+
+
+class GaussianNoise(Modifier):
+    """Draws zero-mean Gaussian noise for a fixed list of standard deviations, a row per tick (the draws
+    come in batches, from the modifier's own seeded stream: same seed, same noise)."""
+
+    stds: list[float] = []
+
+    def draw(self) -> list[float]:
+        rows = getattr(self, "_rows", None)
+        if not rows:
+            rows = self._rows = self.rng.normal(0.0, self.stds, size=(BATCH, len(self.stds))).tolist()
+            rows.reverse()
+        return rows.pop()
+
+
+class PoseNoise(GaussianNoise):
     """x, y, z += N(0, pos_std); roll, pitch, yaw += N(0, rot_std) (with _2D: x, y, yaw only)."""
 
     Params = PoseNoiseParams
@@ -42,8 +59,7 @@ class PoseNoise(Modifier):
         self.stds = [std for _, std, _ in self.fields]
 
     def modify(self, data: dict) -> None:
-        noise = self.rng.normal(0.0, self.stds).tolist()
-        for (field, _, angle), n in zip(self.fields, noise):
+        for (field, _, angle), n in zip(self.fields, self.draw()):
             if field in data:
                 value = float(data[field]) + n
                 data[field] = normalize_angle(value) if angle else value
@@ -66,7 +82,7 @@ class IMUNoiseParams(ModifierParams):
     accel_std: Std = Field(0.5, description="m/s^2; a number or {x, y, z}")
 
 
-class IMUNoise(Modifier):
+class IMUNoise(GaussianNoise):
     """angular_velocity += N(0, gyro_std), linear_acceleration += N(0, accel_std), per axis."""
 
     Params = IMUNoiseParams
@@ -77,7 +93,7 @@ class IMUNoise(Modifier):
         self.stds = [_std(p.gyro_std, a) for a in "xyz"] + [_std(p.accel_std, a) for a in "xyz"]
 
     def modify(self, data: dict) -> None:
-        noise = self.rng.normal(0.0, self.stds).tolist()  # one draw per tick
+        noise = self.draw()
         for field, n in (("angular_velocity", noise[:3]), ("linear_acceleration", noise[3:])):
             if field in data:
                 data[field] = [float(v) + e for v, e in zip(data[field], n)]

@@ -39,8 +39,8 @@ class GPS(Sensor):
     )
 
     def default_action(self):
-        x, y, z = (float(v) for v in self.position())
-        self.local_data.update(x=x, y=y, z=z)
+        local = self.local_data
+        local["x"], local["y"], local["z"] = self.sim.data.xpos[self.body_id].tolist()
 
 
 class RawGPS(GPS):
