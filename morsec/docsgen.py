@@ -18,7 +18,6 @@ from typing import Any
 import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
-from pydantic_core import PydanticUndefined
 
 from morsec.catalogue import Catalogue
 from morsec.component import KINDS, Device

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from morsec.catalogue import Catalogue
-from morsec.component import KINDS, Device
+from morsec.component import KINDS
 
 PICTURE_SIZE = (400, 300)
 GALLERY = "components"

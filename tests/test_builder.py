@@ -13,7 +13,7 @@ import pytest
 
 from morsec.builder.script import morsec_args, record_script
 from morsec.catalogue import load_catalogue
-from morsec.compiler.build import build_scene, compile_scene, component_entries
+from morsec.compiler.build import build_scene, component_entries
 from morsec.errors import MorsecError, SceneError
 from morsec.scene.loader import load_scene
 
@@ -606,9 +606,6 @@ def test_plain_python_error_is_one_line(tmp_path):
 
 
 def test_plain_python_runs(tmp_path):
-    from morsec.cli import app
-    if "run" not in {c.name or c.callback.__name__ for c in app.registered_commands}:
-        pytest.skip("no run command yet")
     script = write(tmp_path, STANDALONE + "    env.create()\n")
     result = run_python(script, "--", "run", "--duration", "0.1", "--time-strategy", "fixed_step")
     assert result.returncode == 0, result.stderr

@@ -5,8 +5,6 @@ from pathlib import Path
 
 import pytest
 
-pytest.importorskip("pymorse")
-
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
 from runtime_helpers import Morsec  # noqa: E402
 

@@ -80,8 +80,7 @@ def test_robot_urdf_is_valid(robot_id, build_yaml):
             assert value in links, f"{prop}={value!r} is not a link of {robot_id}"
 
     check_urdf = shutil.which("check_urdf")
-    if check_urdf is None:
-        pytest.skip("check_urdf (liburdfdom-tools) is not installed")
+    assert check_urdf, "check_urdf (liburdfdom-tools) is required: apt-get install liburdfdom-tools"
     result = subprocess.run([check_urdf, str(path)], capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "Successfully Parsed XML" in result.stdout

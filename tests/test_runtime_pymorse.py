@@ -15,7 +15,6 @@ import time
 
 import pytest
 
-pymorse = pytest.importorskip("pymorse")
 
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
 from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, start_all, wait_until  # noqa: E402

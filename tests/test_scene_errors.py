@@ -403,8 +403,8 @@ def test_xml_special_characters_in_names_round_trip(odd_build):
         assert ET.parse(urdf).getroot().get("name") == name  # xacro did not evaluate $(...) or ${...}
 
 
-@pytest.mark.skipif(shutil.which("check_urdf") is None, reason="check_urdf (liburdfdom-tools) is not installed")
 def test_urdf_with_odd_names_passes_check_urdf(odd_build):
+    assert shutil.which("check_urdf"), "check_urdf (liburdfdom-tools) is required: apt-get install liburdfdom-tools"
     for name in (ODD_NAMES["robot"], XACRO_LOOKALIKE):
         result = subprocess.run(["check_urdf", str(odd_build / "robots" / f"{name}.urdf")],
                                 capture_output=True, text=True, timeout=60)

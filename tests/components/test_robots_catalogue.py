@@ -83,8 +83,7 @@ def test_robot_urdf_passes_check_urdf(robot, build_yaml):
     out = build_yaml(scene(robot))
     path = out / "robots" / "r.urdf"
     check_urdf = shutil.which("check_urdf")
-    if check_urdf is None:
-        pytest.skip("check_urdf (liburdfdom-tools) is not installed")
+    assert check_urdf, "check_urdf (liburdfdom-tools) is required: apt-get install liburdfdom-tools"
     result = subprocess.run([check_urdf, str(path)], capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "Successfully Parsed XML" in result.stdout

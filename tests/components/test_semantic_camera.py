@@ -131,13 +131,13 @@ def test_tag_selects_by_property_or_type(tmp_path):
 def test_robots_are_tracked_and_the_own_robot_does_not_hide_anything(tmp_path):
     """A camera inside its own robot's chassis (an ATRV) still sees what is ahead; another tagged robot is
     reported like an object; the robot carrying the camera is not reported."""
-    text = f"""environment: {{name: empty, time: {{strategy: fixed_step}}}}
+    text = """environment: {name: empty, time: {strategy: fixed_step}}
 robots:
   - name: r
     type: atrv
     components:
-      - {{name: sem, type: semantic_camera, translate: [0.0, 0.0, 0.1], properties: {{tag: Robot_Tag}}}}
-  - {{name: other, type: atrv, translate: [4.0, 0.0, 0.0]}}
+      - {name: sem, type: semantic_camera, translate: [0.0, 0.0, 0.1], properties: {tag: Robot_Tag}}
+  - {name: other, type: atrv, translate: [4.0, 0.0, 0.0]}
 """
     with simulate(text, tmp_path) as sim:
         sim.step(3)
