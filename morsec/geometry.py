@@ -90,9 +90,11 @@ def euler_of_xmat(m) -> tuple[float, float, float]:
 
 def transpose_times(a, b) -> list[float]:
     """Aᵀ B for row-major 3x3 matrices given as 9-lists."""
-    return [a[0] * b[c] + a[3] * b[3 + c] + a[6] * b[6 + c] for c in range(3)] + \
-           [a[1] * b[c] + a[4] * b[3 + c] + a[7] * b[6 + c] for c in range(3)] + \
-           [a[2] * b[c] + a[5] * b[3 + c] + a[8] * b[6 + c] for c in range(3)]
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
+    return [a0 * b0 + a3 * b3 + a6 * b6, a0 * b1 + a3 * b4 + a6 * b7, a0 * b2 + a3 * b5 + a6 * b8,
+            a1 * b0 + a4 * b3 + a7 * b6, a1 * b1 + a4 * b4 + a7 * b7, a1 * b2 + a4 * b5 + a7 * b8,
+            a2 * b0 + a5 * b3 + a8 * b6, a2 * b1 + a5 * b4 + a8 * b7, a2 * b2 + a5 * b5 + a8 * b8]
 
 
 def transpose_apply(a, v) -> tuple[float, float, float]:

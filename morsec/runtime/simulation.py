@@ -431,7 +431,9 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
-        listening = any(s.listening for s in comp.socket_streams)
+        listening = False
+        for stream in comp.socket_streams:
+            listening = listening or stream.listening
         if not (listening or comp.text_streams):
             return
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick

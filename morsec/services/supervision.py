@@ -174,6 +174,8 @@ class TimeServices:
     sleep._morsec_concurrent = True
 
     def wake(self) -> None:
+        if not self.sleepers:
+            return
         elapsed = self.sim.clock.elapsed
         due = [s for s in self.sleepers if s[0] <= elapsed + 1e-9]
         for item in due:
