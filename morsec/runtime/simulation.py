@@ -33,6 +33,8 @@ from morsec.services.supervision import Communication, Supervision, TimeServices
 
 log = logging.getLogger("morsec.runtime")
 
+POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+
 
 @dataclass
 class RunOptions:
@@ -350,11 +352,18 @@ class Simulation:
         out.flush()
 
     def run(self, duration: float | None = None) -> None:
+        import time
+        next_poll = 0.0
         try:
             while not self.quitting:
                 if duration is not None and self.clock.elapsed >= duration - 1e-9:
                     break
-                self.poller.poll(0.0)
+                # sockets are polled every frame, but at most every POLL_PERIOD of wall time: a fixed_step
+                # loop runs frames far faster than any client can tell apart (lockstep polls every frame)
+                now = time.perf_counter()
+                if now >= next_poll or (self.sync is not None and self.sync.engaged):
+                    self.poller.poll(0.0)
+                    next_poll = now + POLL_PERIOD
                 if self.quitting:
                     break
                 if self.sync is not None and self.sync.engaged and not self.sync.take():
