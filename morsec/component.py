@@ -168,6 +168,10 @@ class Device(Component):
     def interrupt(self) -> None:
         """A running asynchronous service of this component was cancelled or preempted."""
 
+    def reset(self) -> None:
+        """`simulation reset_objects` put every object back at its initial pose: forget targets that would
+        move it away again (a teleport's pose, an arm's joint set-points). Commands such as speeds stay."""
+
     def finalize(self) -> None:
         """Called once when the simulation closes: free what `start` took (renderers, files)."""
 

@@ -213,3 +213,18 @@ def test_odometry_levels(sim, driven):
     travelled = sum(m["dS"] for m in raw if t_first < m["timestamp"] <= t_end)
     assert travelled == pytest.approx(length, rel=0.03)
     assert travelled == pytest.approx(2.0, abs=0.1)
+
+
+def test_reset_objects_also_resets_teleport_targets(tmp_path):
+    """After `simulation reset_objects` a teleport does not drag its robot back to the old command."""
+    from morsec.testing import simulate
+    scene_text = ("robots:\n  - name: r\n    type: atrv\n    components:\n"
+                  "      - {name: tele, type: teleport}\n      - {name: pose, type: pose}\n")
+    with simulate(scene_text, tmp_path) as sim:
+        sim.step(2)
+        sim.call("r.tele", "translate", 3.0, 0.0, 0.0)
+        sim.step(5)
+        assert sim.data("r.pose")["x"] > 2.9
+        sim.sim.reset()
+        sim.step(5)
+        assert abs(sim.data("r.pose")["x"]) < 0.05

@@ -303,6 +303,11 @@ class Simulation:
         self.model.body_pos[:] = body_pos
         self.model.body_quat[:] = body_quat
         mujoco.mj_forward(self.model, self.data)
+        for comp in self.components:
+            try:
+                comp.instance.reset()
+            except Exception as err:
+                comp.fail_once(err)
 
     def place_body(self, body: int, pos, rot) -> None:
         for robot in self.robots:

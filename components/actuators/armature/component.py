@@ -91,6 +91,9 @@ class Armature(Actuator):
         self._scratch = mujoco.MjData(m)
         self.servos.command(q)
 
+    def reset(self):
+        self.start()  # joint targets back to the (restored) initial positions
+
     # ------------------------------------------------------------------ joints
     @property
     def names(self) -> list[str]:

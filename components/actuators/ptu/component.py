@@ -49,6 +49,10 @@ class PTU(Actuator):
         self._tilt_body = mujoco.mj_name2id(self.sim.model, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/tilt")
         self.servos.command(self.servos.positions())
 
+    def reset(self):
+        self.local_data["pan"], self.local_data["tilt"] = self.current()  # the restored initial angles
+        self.servos.command(self.servos.positions())
+
     # ------------------------------------------------------------------ state
     def current(self) -> tuple[float, float]:
         q = self.servos.positions()

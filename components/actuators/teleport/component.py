@@ -25,6 +25,9 @@ class Teleport(Actuator):
         roll, pitch, yaw = self.euler()
         self.local_data.update(x=x, y=y, z=z, roll=roll, pitch=pitch, yaw=yaw)
 
+    def reset(self):
+        self.start()  # the command goes back to the (restored) initial pose
+
     def default_action(self):
         d = self.local_data
         target_rot = quat_to_matrix(euler_to_quat(float(d["roll"]), float(d["pitch"]), float(d["yaw"])))
