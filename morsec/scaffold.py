@@ -17,7 +17,7 @@ from morsec.resources import data_dir
 
 KINDS = {"sensor": "sensors", "actuator": "actuators", "robot": "robots"}
 NAME = re.compile(r"^[a-z][a-z0-9_]*$")
-SCHEMA_URL = "https://morsec.dev/schemas/scene.schema.json"
+SCHEMA_FILE = "scene.schema.json"  # the project's JSON Schema (its own components included), for editors
 
 
 def _env() -> jinja2.Environment:
@@ -53,7 +53,7 @@ def create_project(name: str, parent: Path, force: bool = False) -> Path:
     if root.exists() and any(root.iterdir()) and not force:
         raise MorsecError(f"{root} exists and is not empty; use --force to write into it")
     env = _env()
-    ctx = {"name": name, "schema_url": SCHEMA_URL}
+    ctx = {"name": name, "schema_url": f"../{SCHEMA_FILE}"}
     files = {
         root / PROJECT_FILE: "project/morsec.toml.j2",
         root / "README.md": "project/README.md.j2",
@@ -66,7 +66,17 @@ def create_project(name: str, parent: Path, force: bool = False) -> Path:
     for kind in KINDS.values():
         plan.files[root / "components" / kind / ".keep"] = ""
     plan.write(force)
+    write_schema(root)
     return root
+
+
+def write_schema(root: Path) -> Path:
+    """(Re)write the project's scene schema: after `add` and `rm` it lists the project's components."""
+    from morsec.scene.schema import json_schema_text
+    _forget_catalogue()
+    path = root / SCHEMA_FILE
+    path.write_text(json_schema_text(load_catalogue(root)), encoding="utf-8")
+    return path
 
 
 def _project(path: Path) -> Path:
@@ -107,7 +117,7 @@ def add_component(kind: str, name: str, project: Path, description: str, force: 
     # the template's text is the example: jinja2 renders only the names and description into it
     plan = Plan({path: env.get_template(template).render(**ctx) for path, template in component_files(kind, name, root).items()})
     written = plan.write(force)
-    _forget_catalogue()
+    write_schema(root)
     return written
 
 
@@ -125,7 +135,7 @@ def remove_component(kind: str, name: str, project: Path) -> list[Path]:
             path.unlink()
             removed.append(path)
     shutil.rmtree(folder)
-    _forget_catalogue()
+    write_schema(root)
     return removed
 
 

@@ -47,6 +47,10 @@ def test_create_add_run_drive_and_test(tmp_path):
     assert "thermal_cam" in listing and "Measures heat" in listing and "gripper_x" in listing
     schema = morsec("schema", cwd=project).stdout
     assert '"thermal_cam"' in schema and '"GripperX"' in schema
+    # the project's own schema file, which its scenes name for editors, follows `add`
+    assert (project / "scene.schema.json").read_text() == schema
+    assert (project / "scenes/default.yaml").read_text().startswith(
+        "# yaml-language-server: $schema=../scene.schema.json")
 
     (project / "scenes" / "flow.yaml").write_text(SCENE)
     morsec("build", "scenes/flow.yaml", "-o", "build/flow", cwd=project)
@@ -77,9 +81,12 @@ def test_rm_removes_what_add_generated(tmp_path):
     morsec("create", "p", cwd=tmp_path)
     project = tmp_path / "p"
     before = sorted(str(p.relative_to(project)) for p in project.rglob("*"))
+    schema = (project / "scene.schema.json").read_text()
     morsec("add", "sensor", "probe", ".", "--description", "x", cwd=project)
+    assert '"probe"' in (project / "scene.schema.json").read_text()
     morsec("rm", "sensor", "probe", ".", "--force", cwd=project)
     assert sorted(str(p.relative_to(project)) for p in project.rglob("*")) == before
+    assert (project / "scene.schema.json").read_text() == schema
 
 
 def test_add_refuses_bad_names_builtins_and_overwrites(tmp_path):
