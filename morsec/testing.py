@@ -55,6 +55,10 @@ class Harness:
         """Call a component's service method directly (synchronous services)."""
         return getattr(self.component(fqn), service)(*args)
 
+    def client(self) -> "ServiceClient":
+        """A client sending service requests as one on the socket would (asynchronous ones, cancel)."""
+        return ServiceClient(self)
+
     def body_pose(self, name: str):
         import mujoco
         body = mujoco.mj_name2id(self.sim.model, mujoco.mjtObj.mjOBJ_BODY, name)
@@ -63,6 +67,47 @@ class Harness:
     def yaw(self, name: str) -> float:
         _, rot = self.body_pose(name)
         return math.atan2(rot[1, 0], rot[0, 0])
+
+
+class ServiceClient:
+    """Service requests through the simulation's request manager, as a socket client sends them:
+    `replies[rid]` is (status, result) once answered, `times[rid]` the simulated time it came at."""
+
+    def __init__(self, harness: Harness):
+        self.harness = harness
+        self.replies: dict[str, tuple[str, Any]] = {}
+        self.times: dict[str, float] = {}
+        self.count = 0
+
+    def send(self, component: str, service: str, *args) -> str:
+        from morsec.services.requests import Request
+        self.count += 1
+        rid = f"r{self.count}"
+        self.harness.sim.requests.handle(Request(rid, component, service, list(args), self._reply, client=self))
+        return rid
+
+    def _reply(self, rid: str, status: str, result: Any) -> None:
+        self.replies[rid] = (status, result)
+        self.times[rid] = self.harness.time
+
+    def call(self, component: str, service: str, *args) -> Any:
+        """A synchronous service's result; AssertionError if it did not answer SUCCESS at once."""
+        rid = self.send(component, service, *args)
+        status, result = self.replies.pop(rid, ("no answer", None))
+        assert status == "SUCCESS", (service, status, result)
+        return result
+
+    def cancel(self, rid: str) -> None:
+        self.harness.sim.requests.cancel(self, rid)
+
+    def wait(self, rid: str, seconds: float = 10.0) -> tuple[str, Any, float]:
+        """Step until `rid` is answered (at most `seconds`): (status, result, simulated time of the answer)."""
+        for _ in range(int(seconds * self.harness.sim.clock.frequency)):
+            if rid in self.replies:
+                break
+            self.harness.step()
+        status, result = self.replies[rid]
+        return status, result, self.times[rid]
 
 
 @contextlib.contextmanager

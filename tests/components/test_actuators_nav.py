@@ -13,7 +13,6 @@ import mujoco
 import numpy as np
 import pytest
 
-from morsec.services.requests import Request
 from morsec.testing import simulate
 
 FPS = 60
@@ -35,33 +34,6 @@ robots:
 
 
 WAYPOINT = atrv("{name: motion, type: waypoint, services: [socket]}")
-
-
-class Client:
-    """Requests as a socket client would send them: replies are collected, `cancel` works by id."""
-
-    def __init__(self, harness):
-        self.h = harness
-        self.replies: dict[str, tuple[str, object]] = {}
-        self.count = 0
-
-    def send(self, component: str, service: str, *args) -> str:
-        self.count += 1
-        rid = f"r{self.count}"
-        self.h.sim.requests.handle(Request(rid, component, service, list(args), self._reply, client=self))
-        return rid
-
-    def call(self, component: str, service: str, *args):
-        rid = self.send(component, service, *args)
-        status, result = self.replies.pop(rid)
-        assert status == "SUCCESS", (service, status, result)
-        return result
-
-    def cancel(self, rid: str) -> None:
-        self.h.sim.requests.cancel(self, rid)
-
-    def _reply(self, rid, status, result) -> None:
-        self.replies[rid] = (status, result)
 
 
 def pose(h) -> dict:
@@ -155,7 +127,7 @@ def test_waypoint_turns_on_the_spot_while_heading_error_is_large(tmp_path):
 
 def test_waypoint_goto_completes_with_arrived(tmp_path):
     with simulate(WAYPOINT, tmp_path) as h:
-        client = Client(h)
+        client = h.client()
         rid = client.send("robot.motion", "goto", 2.0, 0.0, 0.0, 0.1, 1.0)
         assert rid not in client.replies  # asynchronous: no answer yet
         run_until(h, lambda: rid in client.replies, timeout=5.0)
@@ -167,7 +139,7 @@ def test_waypoint_goto_completes_with_arrived(tmp_path):
 
 def test_waypoint_setdest_answers_whether_it_moves(tmp_path):
     with simulate(WAYPOINT, tmp_path) as h:
-        client = Client(h)
+        client = h.client()
         assert client.call("robot.motion", "setdest", 0.2, 0.1, 0.0) is False  # already within 0.5 m
         assert h.data("robot.motion")["x"] == pytest.approx(0.0)  # goal not changed
         assert client.call("robot.motion", "setdest", 3.0, 0.0, 0.0, 0.2, 1.5) is True
@@ -180,7 +152,7 @@ def test_waypoint_setdest_answers_whether_it_moves(tmp_path):
 def test_waypoint_stop_keeps_goto_pending_and_resume_goes_on(tmp_path):
     """MORSE's waypoint service test: stop, the goto stays pending, resume, it completes."""
     with simulate(WAYPOINT, tmp_path) as h:
-        client = Client(h)
+        client = h.client()
         rid = client.send("robot.motion", "goto", 4.0, 0.0, 0.0, 0.1, 1.0)
         h.run_for(2.0)
         assert client.call("robot.motion", "get_status") == "Transit"
@@ -202,7 +174,7 @@ def test_waypoint_stop_keeps_goto_pending_and_resume_goes_on(tmp_path):
 
 def test_waypoint_second_goto_preempts_the_first(tmp_path):
     with simulate(WAYPOINT, tmp_path) as h:
-        client = Client(h)
+        client = h.client()
         first = client.send("robot.motion", "goto", 10.0, 0.0, 0.0, 0.1, 1.0)
         h.run_for(1.0)
         second = client.send("robot.motion", "goto", 1.0, 2.0, 0.0, 0.3, 1.0)
@@ -215,7 +187,7 @@ def test_waypoint_second_goto_preempts_the_first(tmp_path):
 
 def test_waypoint_cancel_preempts_and_stops_the_robot(tmp_path):
     with simulate(WAYPOINT, tmp_path) as h:
-        client = Client(h)
+        client = h.client()
         rid = client.send("robot.motion", "goto", 10.0, 0.0, 0.0, 0.1, 1.0)
         h.run_for(2.0)
         client.cancel(rid)

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from morsec.catalogue import load_catalogue
-from morsec.services.requests import Request
 from morsec.testing import simulate
 
 # a 1.0 kg rigid body the size of a quadrotor, used when the catalogue has no `quadrotor` robot
@@ -83,18 +82,6 @@ def velocity(h, fqn: str = "quad.motion") -> np.ndarray:
     return h.component(fqn).robot.velocity()[0]
 
 
-class Client:
-    def __init__(self, harness):
-        self.h, self.replies, self.count = harness, {}, 0
-
-    def send(self, component: str, service: str, *args) -> str:
-        self.count += 1
-        rid = f"r{self.count}"
-        self.h.sim.requests.handle(Request(rid, component, service, list(args),
-                                           lambda i, s, r: self.replies.__setitem__(i, (s, r)), client=self))
-        return rid
-
-
 # ------------------------------------------------------------------------------------------- rotorcraft_waypoint
 def test_rotorcraft_waypoint_holds_its_initial_point(quad, tmp_path):
     text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint}")
@@ -128,7 +115,7 @@ def test_rotorcraft_waypoint_flies_to_a_point_and_heading(quad, tmp_path):
 def test_rotorcraft_waypoint_goto_answers_arrived_and_can_be_preempted(quad, tmp_path):
     text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint, services: [socket]}")
     with simulate(text, tmp_path, **kw) as h:
-        client = Client(h)
+        client = h.client()
         first = client.send("quad.motion", "goto", 5.0, 0.0, 2.0, 0.0)
         h.run_for(0.5)
         second = client.send("quad.motion", "goto", -1.0, 1.0, 2.0, 0.0, 0.3)
@@ -228,7 +215,7 @@ def test_stabilized_quadrotor_follows_morse_linear_model(quad, tmp_path):
         assert x3 == pytest.approx(0.4 + 1.4 + 2.0, abs=0.2)
         h.run_for(1.0)
         assert pose(h)["x"] == pytest.approx(x3 + 2.0, abs=0.2)  # no drag: the velocity stays
-        client = Client(h)
+        client = h.client()
         client.send("quad.motion", "stop")
         h.run_for(1.0)
         assert pose(h)["x"] == pytest.approx(x3 + 2.0, abs=0.2)

@@ -14,7 +14,6 @@ import pytest
 
 from morsec.catalogue import load_catalogue
 from morsec.compiler.urdf import expand_xacro
-from morsec.services.requests import Request
 from morsec.testing import simulate
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -33,29 +32,6 @@ robots:
         components:
           - {{name: pose, type: armature_pose}}
 {extra}"""
-
-
-class Client:
-    def __init__(self, sim):
-        self.sim = sim
-        self.replies: dict[str, tuple] = {}
-        self.count = 0
-
-    def send(self, component: str, service: str, *args) -> str:
-        self.count += 1
-        rid = f"r{self.count}"
-        self.sim.sim.requests.handle(Request(rid, component, service, list(args), self._reply, client=self))
-        return rid
-
-    def _reply(self, rid, status, result) -> None:
-        self.replies[rid] = (status, result, self.sim.time)
-
-    def wait(self, rid: str, seconds: float = 10.0) -> tuple:
-        for _ in range(int(seconds * self.sim.sim.clock.frequency)):
-            if rid in self.replies:
-                break
-            self.sim.step()
-        return self.replies[rid]
 
 
 @pytest.fixture
@@ -103,7 +79,7 @@ def test_set_rotations_reaches_the_angles(kuka):
 
 @pytest.mark.parametrize("speed", [None, 0.4])
 def test_rotate_at_the_given_speed(kuka, speed):
-    client = Client(kuka)
+    client = kuka.client()
     start = kuka.time
     rid = client.send("robot.arm", "rotate", "kuka_1", 0.8, speed) if speed else \
         client.send("robot.arm", "rotate", "kuka_1", 0.8)
@@ -117,7 +93,7 @@ def test_rotate_at_the_given_speed(kuka, speed):
 
 
 def test_trajectory_timing(kuka):
-    client = Client(kuka)
+    client = kuka.client()
     start = kuka.time
     points = [{"positions": [0.4, 0.6, 0.0, -0.6], "time_from_start": 1.0},
               {"positions": [0.0, 0.3, 0.2, -1.0, 0.1, 0.2, 0.3], "time_from_start": 2.0}]
@@ -134,7 +110,7 @@ def test_trajectory_timing(kuka):
 
 
 def test_trajectory_waits_for_its_start_time(kuka):
-    client = Client(kuka)
+    client = kuka.client()
     now = kuka.sim.clock.now()
     rid = client.send("robot.arm", "trajectory", {"starttime": now + 1.0,
                                                   "points": [{"positions": [0.5], "time_from_start": 0.5}]})
@@ -167,7 +143,7 @@ def test_place_and_move_ik_target(kuka):
     assert np.linalg.norm(pos - goal) < tol
     assert rot[:, 2] @ [0, 0, -1] > math.cos(0.01)
 
-    client = Client(kuka)
+    client = kuka.client()
     start = kuka.time
     status, _, at = client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [0.0, -0.4, -0.2]))
     assert status == "SUCCESS"
@@ -185,10 +161,10 @@ def test_place_and_move_ik_target(kuka):
 
 
 def test_cancel_stops_the_arm_where_it_is(kuka):
-    client = Client(kuka)
+    client = kuka.client()
     rid = client.send("robot.arm", "rotate", "kuka_1", 2.0)
     kuka.run_for(0.5)
-    kuka.sim.requests.cancel(client, rid)
+    client.cancel(rid)
     assert client.replies[rid][0] == "PREEMPTED"
     stopped = state(kuka)
     kuka.run_for(0.5)
@@ -199,7 +175,7 @@ def test_generic_armature_revolute_and_prismatic_joints(tmp_path):
     with simulate(scene("armature"), tmp_path) as sim:
         assert sim.call("robot.arm", "get_joints") == ["shoulder_yaw", "shoulder_pitch", "elbow", "extension"]
         assert sim.call("robot.arm", "get_IK_limits", "extension") == pytest.approx([0.0, 0.2])
-        client = Client(sim)
+        client = sim.client()
         start = sim.time
         status, _, at = client.wait(client.send("robot.arm", "translate", "extension", 0.1))
         # at LinearSpeed, done once within DistanceTolerance (0.005 m) of the target
@@ -239,7 +215,7 @@ def test_arm_pick_scene_picks_the_box_and_puts_it_down(tmp_path):
     """The example scene: the gripper on the KUKA's flange, placed above the box by IK, grabs it, carries
     it 0.3 m to the side and lets it go on the table."""
     with simulate((ROOT / "scenes" / "arm_pick.yaml").read_text(), tmp_path) as sim:
-        client = Client(sim)
+        client = sim.client()
         sim.run_for(0.2)
         sim.call("robot.arm", "place_IK_target", "kuka_7", [0.9, 0.0, 0.65], [0.0, math.pi, 0.0], False)
         assert client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [0.0, 0.0, -0.15]))[0] == "SUCCESS"

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from morsec.errors import SceneError
-from morsec.services.requests import Request
 from morsec.testing import simulate
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
@@ -37,35 +36,10 @@ objects:
 """
 
 
-class Client:
-    """Requests as a socket client sends them; replies are kept with the simulated time they came at."""
-
-    def __init__(self, sim):
-        self.sim = sim
-        self.replies: dict[str, tuple] = {}
-        self.count = 0
-
-    def send(self, component: str, service: str, *args) -> str:
-        self.count += 1
-        rid = f"r{self.count}"
-        self.sim.sim.requests.handle(Request(rid, component, service, list(args), self._reply, client=self))
-        return rid
-
-    def _reply(self, rid, status, result) -> None:
-        self.replies[rid] = (status, result, self.sim.time)
-
-    def wait(self, rid: str, seconds: float = 10.0) -> tuple:
-        for _ in range(int(seconds * self.sim.sim.clock.frequency)):
-            if rid in self.replies:
-                break
-            self.sim.step()
-        return self.replies[rid]
-
-
 @pytest.mark.parametrize("speed", [1.0, 2.0])
 def test_set_pan_tilt_reaches_the_angles_at_the_speed(speed, tmp_path):
     with simulate(scene(speed, camera=False), tmp_path) as sim:
-        client = Client(sim)
+        client = sim.client()
         start = sim.time
         rid = client.send("robot.ptu", "set_pan_tilt", 1.2, -0.6)
         sim.run_for(0.5)
@@ -90,7 +64,7 @@ def test_look_at_point_aims_the_tilt_body_and_the_camera_turns_with_it(tmp_path)
         camera = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "robot.ptu.camera")
         assert model.body_parentid[camera] == tilt  # appended to the unit: nested in its tilt body
 
-        client = Client(sim)
+        client = sim.client()
         point = np.array([1.0, 2.0, 0.2])
         status, _, _ = client.wait(client.send("robot.ptu", "look_at_point", *point))
         assert status == "SUCCESS"
@@ -114,7 +88,7 @@ def test_look_at_point_aims_the_tilt_body_and_the_camera_turns_with_it(tmp_path)
 
 def test_look_at_object_and_unknown_objects(tmp_path):
     with simulate(scene(camera=False), tmp_path) as sim:
-        client = Client(sim)
+        client = sim.client()
         status, _, _ = client.wait(client.send("robot.ptu", "look_at_object", "crate"))
         assert status == "SUCCESS"
         pos, rot = sim.body_pose("robot.ptu/tilt")
@@ -126,13 +100,13 @@ def test_look_at_object_and_unknown_objects(tmp_path):
 
 def test_cancel_stops_where_it_is_and_a_new_target_preempts(tmp_path):
     with simulate(scene(camera=False), tmp_path) as sim:
-        client = Client(sim)
+        client = sim.client()
         first = client.send("robot.ptu", "set_pan_tilt", 2.0, 0.0)
         sim.run_for(0.5)
         second = client.send("robot.ptu", "set_pan_tilt", -0.3, 0.2)
         assert client.replies[first][0] == "PREEMPTED"
         sim.run_for(0.3)
-        sim.sim.requests.cancel(client, second)
+        client.cancel(second)
         assert client.replies[second][0] == "PREEMPTED"
         stopped = sim.call("robot.ptu", "get_pan_tilt")
         sim.run_for(0.5)
@@ -169,7 +143,7 @@ def test_a_mount_body_missing_from_the_model_is_a_scene_error(tmp_path):
 def test_ptu_camera_scene_looks_at_the_red_box(tmp_path):
     """The example scene: once the unit looks at the red box, the middle of the camera's picture is red."""
     with simulate((SCENES / "ptu_camera.yaml").read_text(), tmp_path) as sim:
-        client = Client(sim)
+        client = sim.client()
         status, _, _ = client.wait(client.send("robot.ptu", "look_at_object", "red_box"))
         assert status == "SUCCESS"
         sim.run_for(0.2)
