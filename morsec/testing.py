@@ -43,13 +43,9 @@ class Harness:
         return dict(self.component(fqn).local_data)
 
     def command(self, fqn: str, **values) -> None:
-        """What a client's message on an actuator's stream does: replace its data (unsent fields: defaults)."""
-        comp = self.sim.component(fqn)
-        local = comp.instance.local_data
-        local.clear()
-        for name, default in comp.defaults:
-            local[name] = default
-        local.update(values)
+        """What a client's message on an actuator's stream does, at once: replace its data (unsent fields
+        take their defaults) and run its input modifiers."""
+        self.sim.receive(self.sim.component(fqn), values)
 
     def call(self, fqn: str, service: str, *args) -> Any:
         """Call a component's service method directly (synchronous services)."""

@@ -291,14 +291,6 @@ def test_position_modifier_on_a_level_without_positions(converted):
     assert "x" not in raw
 
 
-def send(h, fqn: str, **values) -> None:
-    """What a client's message does to an actuator: replace its data, then run its input modifiers once."""
-    h.command(fqn, **values)
-    comp = h.sim.component(fqn)
-    for modifier in comp.modifiers:
-        modifier.modify(comp.instance.local_data)
-
-
 def test_actuator_inputs_are_converted_back(tmp_path):
     """Teleport commands given in feet, NED and geodetic coordinates land the robot where they say."""
     lat, lon, alt = geodetic_of(ecef_of_scene(30.0, 40.0, 5.0))
@@ -313,9 +305,9 @@ robots:
   - {{name: c, type: fake_robot, components: [{{name: tp, type: teleport, modifiers: [{{name: geodetic}}]}}]}}
 """
     with simulate(text, tmp_path) as h:
-        send(h, "a.tp", x=10.0 * FEET, y=-2.0 * FEET, z=1.0 * FEET)
-        send(h, "b.tp", x=5.0, y=3.0, z=-2.0)  # 5 m north, 3 m east, 2 m up
-        send(h, "c.tp", x=lon, y=lat, z=alt)
+        h.command("a.tp", x=10.0 * FEET, y=-2.0 * FEET, z=1.0 * FEET)
+        h.command("b.tp", x=5.0, y=3.0, z=-2.0)  # 5 m north, 3 m east, 2 m up
+        h.command("c.tp", x=lon, y=lat, z=alt)
         h.step(2)
         assert h.body_pose("a")[0] == pytest.approx([10.0, -2.0, 1.0], abs=1e-9)
         assert h.body_pose("b")[0] == pytest.approx([3.0, 5.0, 2.0], abs=1e-9)

@@ -421,19 +421,24 @@ class Simulation:
             received = stream.take()
             if received is not None:
                 message = received
-        local = comp.instance.local_data
-        if message is not None:  # a message replaces the whole data dict: unsent fields take their defaults
-            local.clear()
-            for name, default in comp.defaults:
-                local[name] = copy.deepcopy(default)
-            local.update(message)
         try:
             if message is not None:
-                for modifier in comp.modifiers:
-                    modifier.modify(local)
+                self.receive(comp, message)
             comp.instance.default_action()
         except Exception as err:  # a bad command must not stop the simulation
             comp.fail_once(err)
+
+    @staticmethod
+    def receive(comp: ComponentRuntime, message: dict) -> None:
+        """A client's message to an actuator: it replaces the whole data dict (unsent fields take their
+        defaults), then the input modifiers run on it."""
+        local = comp.instance.local_data
+        local.clear()
+        for name, default in comp.defaults:
+            local[name] = copy.deepcopy(default)
+        local.update(message)
+        for modifier in comp.modifiers:
+            modifier.modify(local)
 
     def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
         inst = comp.instance
