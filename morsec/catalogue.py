@@ -38,6 +38,7 @@ class Catalogue:
     roots: tuple[Path, ...]
     by_kind: dict[str, dict[str, type[Component]]] = field(default_factory=dict)
     aliases: dict[str, dict[str, str]] = field(default_factory=dict)  # kind -> builder name -> id
+    _devices: dict | None = field(default=None, repr=False)
 
     def ids(self, kind: str) -> list[str]:
         return sorted(self.by_kind.get(kind, {}))
@@ -59,7 +60,10 @@ class Catalogue:
         return self.by_kind[kind][resolved]
 
     def devices(self) -> dict[str, type[Device]]:
-        return {**self.by_kind.get("sensors", {}), **self.by_kind.get("actuators", {})}
+        """Sensors and actuators by id (a catalogue does not change once loaded: computed once)."""
+        if self._devices is None:
+            self._devices = {**self.by_kind.get("sensors", {}), **self.by_kind.get("actuators", {})}
+        return self._devices
 
     def all(self) -> list[type[Component]]:
         return [cls for kind in KINDS for _, cls in sorted(self.by_kind.get(kind, {}).items())]
@@ -129,10 +133,23 @@ def _load(roots: tuple[Path, ...]) -> Catalogue:
     return cat
 
 
-def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
+def _module_name(folder: Path, kind: str, cid: str) -> str:
+    """A stable module name per component folder (two projects may both have a `thermal_cam`)."""
     digest = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8]
-    safe_id = re.sub(r"\W", "_", cid)
-    module_name = f"morsec_components.{kind}.{safe_id}_{digest}"
+    return f"morsec_components.{kind}.{re.sub(r'[^0-9A-Za-z_]', '_', cid)}_{digest}"
+
+
+def is_builtin(cls: type[Component]) -> bool:
+    """Whether a component comes with morsec (rather than from a project or another package)."""
+    try:
+        Path(cls.folder).resolve().relative_to(data_dir("components").resolve())
+        return True
+    except ValueError:
+        return False
+
+
+def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
+    module_name = _module_name(folder, kind, cid)
     spec = importlib.util.spec_from_file_location(module_name, folder / "component.py")
     module = importlib.util.module_from_spec(spec)
     sys.modules[module_name] = module
@@ -159,8 +176,7 @@ def component_class(kind: str, cid: str, start: Path | None = None) -> type[Comp
     for root in search_path(start):
         folder = root / kind / cid
         if (folder / "component.py").is_file():
-            digest, safe_id = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8], re.sub(r"\W", "_", cid)
-            module = sys.modules.get(f"morsec_components.{kind}.{safe_id}_{digest}")  # as load_component names it
+            module = sys.modules.get(_module_name(folder, kind, cid))
             loaded = getattr(module, "COMPONENT", None)
             return loaded if getattr(loaded, "id", None) == cid else load_component(folder, kind, cid)
     raise MorsecError(f"no {kind[:-1]} {cid!r} on the component search path")

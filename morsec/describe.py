@@ -3,7 +3,7 @@ morsec.docsgen.component_section, as on the generated pages)."""
 
 from __future__ import annotations
 
-from morsec.catalogue import Catalogue
+from morsec.catalogue import Catalogue, is_builtin
 
 
 def catalogue_listing(cat: Catalogue) -> str:
@@ -15,16 +15,7 @@ def catalogue_listing(cat: Catalogue) -> str:
         lines.append(f"{kind}:")
         width = max(len(cid) for cid in entries)
         for cid, cls in sorted(entries.items()):
-            source = "" if cls.folder and _builtin(cls, cat) else "  [project]"
+            source = "" if is_builtin(cls) else "  [project]"
             lines.append(f"  {cid:<{width}}  {cls.builder_name:<22} {cls.short_descr}{source}")
         lines.append("")
     return "\n".join(lines)
-
-
-def _builtin(cls, cat: Catalogue) -> bool:
-    from morsec.resources import data_dir
-    try:
-        cls.folder.relative_to(data_dir("components"))
-        return True
-    except ValueError:
-        return False

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import jinja2
 
-from morsec.catalogue import PROJECT_FILE, camel_case, load_catalogue, project_root
+from morsec.catalogue import PROJECT_FILE, camel_case, is_builtin, load_catalogue, project_root
 from morsec.errors import MorsecError
 from morsec.resources import data_dir
 
@@ -108,9 +108,8 @@ def add_component(kind: str, name: str, project: Path, description: str, force: 
     check_name(name, kind)
     root = _project(project)
     cat = load_catalogue(root)
-    builtin = {cid for k in ("sensors", "actuators", "robots") for cid in cat.by_kind.get(k, {})
-               if _is_builtin(cat.by_kind[k][cid])}
-    if (name in builtin or camel_case(name) in {c.builder_name for c in cat.all() if _is_builtin(c)}) and not force:
+    builtin = [c for c in cat.all() if is_builtin(c)]
+    if (name in {c.id for c in builtin} or camel_case(name) in {c.builder_name for c in builtin}) and not force:
         raise MorsecError(f"{name!r} is a built-in component; choose another name or use --force to shadow it")
     env = _env()
     ctx = {"name": name, "cls": camel_case(name), "description": description.replace('"', "'").strip()}
@@ -147,14 +146,6 @@ def usage(kind: str, name: str) -> str:
     return (f"use it in a scene:\n  components:\n    - {{name: {name}, type: {name}, streams: [socket]}}\n"
             f"or in a builder script:\n  {name} = {cls}()\n  robot.append({name})\n"
             f"see it: morsec components {name}; test it: python -m pytest tests/test_{name}.py")
-
-
-def _is_builtin(cls) -> bool:
-    try:
-        Path(cls.folder).relative_to(data_dir("components"))
-        return True
-    except ValueError:
-        return False
 
 
 def _forget_catalogue() -> None:
