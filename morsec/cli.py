@@ -78,7 +78,7 @@ def run(
     time_scale: Annotated[Optional[float], typer.Option(help="simulated seconds per wall-clock second (best_effort)")] = None,
     bind: Annotated[str, typer.Option(help="address the servers listen on")] = "127.0.0.1",
     service_port: Annotated[Optional[int], typer.Option(help="service port (default 4000, else 4001-4010)")] = None,
-    port_base: Annotated[Optional[int], typer.Option(help="first stream port instead of 60000")] = None,
+    port_base: Annotated[Optional[int], typer.Option(help="first stream port instead of 60000 (0: ports the OS picks; see the table or get_stream_port)")] = None,
     seed: Annotated[Optional[int], typer.Option(help="random seed for noise (default: the scene's)")] = None,
     out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
     view: Annotated[Optional[str], typer.Option(

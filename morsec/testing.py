@@ -5,7 +5,7 @@
         sim.run_for(2.0)
         assert sim.data("robot.pose")["x"] > 1.9
 
-No sockets are listened on unless `sockets=True` (then on free ports)."""
+Its servers listen on free ports (the OS picks them), so tests run side by side."""
 
 from __future__ import annotations
 
@@ -107,8 +107,8 @@ class ServiceClient:
 
 
 @contextlib.contextmanager
-def simulate(scene: str | dict, tmp_path: Path, *, project: Path | None = None, sockets: bool = False,
-             seed: int | None = None, name: str = "scene") -> Iterator[Harness]:
+def simulate(scene: str | dict, tmp_path: Path, *, project: Path | None = None, seed: int | None = None,
+             name: str = "scene") -> Iterator[Harness]:
     """`project`: a folder of a morsec project whose components the scene uses (default: the current one)."""
     tmp_path = Path(tmp_path)
     text = scene if isinstance(scene, str) else yaml.safe_dump(scene, sort_keys=False)
@@ -116,8 +116,7 @@ def simulate(scene: str | dict, tmp_path: Path, *, project: Path | None = None, 
     source.write_text(text)
     cat = load_catalogue(Path(project) if project is not None else Path.cwd())
     build_dir = build_scene(source, tmp_path / f"build-{name}", cat)
-    options = RunOptions(strategy="fixed_step", seed=seed, output_dir=tmp_path,
-                         service_port=0 if not sockets else 0, port_base=0)
+    options = RunOptions(strategy="fixed_step", seed=seed, output_dir=tmp_path, service_port=0, port_base=0)
     sim = Simulation(build_dir, cat, options)
     try:
         yield Harness(sim)

@@ -383,3 +383,12 @@ def test_text_middleware_files(sim):
     assert all(b[0] > a[0] for a, b in zip(values, values[1:]))
     assert values[-1][0] - values[-2][0] == pytest.approx(0.1, abs=0.02)  # frequency 10
     assert values[-1][1] == pytest.approx(3.0, abs=0.05)
+
+
+def test_port_base_zero_lets_the_os_pick_every_stream_port(tmp_path):
+    """`--port-base 0`: no stream lands on a fixed (or a low, privileged) port; the table says where."""
+    path = scene_file(tmp_path, scene(robot("robot", pose_sensor(), pose_sensor("second"))))
+    with Morsec(path, tmp_path, port_base=0) as sim:
+        ports = sim.client().ok("simulation", "get_all_stream_ports")
+        assert sorted(ports) == ["robot.pose", "robot.second"]
+        assert all(port >= 1024 for port in ports.values()) and len(set(ports.values())) == 2

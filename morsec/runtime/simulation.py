@@ -221,7 +221,9 @@ class Simulation:
                 comp = self.by_name[stream["component"]]
                 if stream["middleware"] == "socket":
                     port = stream["port"]
-                    if opts.port_base is not None and not stream["explicit_port"]:
+                    if opts.port_base == 0:  # every stream on a port the OS picks (tests, throwaway runs)
+                        port = 0
+                    elif opts.port_base is not None and not stream["explicit_port"]:
                         port = opts.port_base + (port - STREAM_PORT_BASE)
                     server = SocketStream(self.poller, comp.fqn, stream["direction"], opts.bind, port, hint_only=True)
                     comp.socket_streams.append(server)

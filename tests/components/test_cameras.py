@@ -289,7 +289,7 @@ def test_socket_message_is_morses_and_silent_when_not_capturing(tmp_path):
     scene = holder_scene("{name: cam, type: video_camera, streams: [socket], "
                          "properties: {cam_width: 8, cam_height: 6}}",
                          box("target", (4.5, 0.0, 1.0), (1.0, 1.0, 1.0)))
-    with simulate(scene, tmp_path, sockets=True) as sim:
+    with simulate(scene, tmp_path) as sim:
         client = _connect(sim, "r.cam")
         sim.step(3)
         line = _read_lines(client)[-1]  # the last picture
@@ -414,7 +414,7 @@ def test_depth_camera_keep_resolution_and_socket_points(tmp_path):
     cams = f"""{{name: organized, type: depth_camera, streams: [socket], properties: {{{size}, keep_resolution: true}}}}
                {{name: plain, type: depth_camera, properties: {{{size}}}}}"""
     wall = box("wall", (3.5, 0.0, 0.0), (1.0, 20.0, 2.0), (0.7, 0.7, 0.7))  # top edge at z = 1 (the camera's)
-    with simulate(holder_scene(cams, wall, env="empty"), tmp_path, sockets=True) as sim:
+    with simulate(holder_scene(cams, wall, env="empty"), tmp_path) as sim:
         client = _connect(sim, "r.organized")
         sim.step(3)
         organized, plain = sim.data("r.organized"), sim.data("r.plain")
