@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +32,7 @@ sys.path.insert(0, str(ROOT))
 import morsec  # noqa: E402,F401  (chooses MUJOCO_GL before mujoco is imported)
 import mujoco  # noqa: E402
 
+from timing import batch, compare  # noqa: E402  (benchmarks/timing.py)
 from morsec.catalogue import load_catalogue  # noqa: E402
 from morsec.middleware.socket_streams import encode  # noqa: E402
 from morsec.testing import simulate  # noqa: E402
@@ -62,23 +62,6 @@ robots:
 objects:
 {objects}
 """
-
-
-def batch(fn, frames: int) -> float:
-    """Mean time of one call over a batch of `frames`, in seconds."""
-    start = time.perf_counter()
-    for _ in range(frames):
-        fn()
-    return (time.perf_counter() - start) / frames
-
-
-def compare(a, b, frames: int, repeats: int) -> tuple[float, float]:
-    """Best batch time of `a` and of `b`, batches interleaved so that both see the same machine load."""
-    best_a = best_b = float("inf")
-    for _ in range(repeats):
-        best_a = min(best_a, batch(a, frames))
-        best_b = min(best_b, batch(b, frames))
-    return best_a, best_b
 
 
 def bare_renderer(m, d, camera, *, depth: bool, near: float, far: float, effects: bool = False):

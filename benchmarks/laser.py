@@ -21,7 +21,6 @@ from __future__ import annotations
 import argparse
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import mujoco
@@ -30,6 +29,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from timing import batch, compare  # noqa: E402  (benchmarks/timing.py)
 from morsec.catalogue import load_catalogue  # noqa: E402
 from morsec.testing import simulate  # noqa: E402
 
@@ -58,23 +58,6 @@ robots:
 objects:
 {objects}
 """
-
-
-def batch(fn, calls: int) -> float:
-    """Mean time of one call over a batch of `calls`, in seconds."""
-    start = time.perf_counter()
-    for _ in range(calls):
-        fn()
-    return (time.perf_counter() - start) / calls
-
-
-def compare(a, b, calls: int, repeats: int) -> tuple[float, float]:
-    """Best batch time of `a` and of `b`, batches interleaved so that both see the same machine load."""
-    best_a = best_b = float("inf")
-    for _ in range(repeats):
-        best_a = min(best_a, batch(a, calls))
-        best_b = min(best_b, batch(b, calls))
-    return best_a, best_b
 
 
 def main(argv=None) -> int:
