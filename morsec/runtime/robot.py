@@ -8,6 +8,30 @@ import numpy as np
 from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
 
+def free_joint(model, body: int) -> tuple[int, int] | None:
+    """(qpos address, dof address) of a body's free joint, or None for a body fixed in its parent."""
+    if model.body_jntnum[body] > 0:
+        jnt = model.body_jntadr[body]
+        if model.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
+            return int(model.jnt_qposadr[jnt]), int(model.jnt_dofadr[jnt])
+    return None
+
+
+def place(model, data, body: int, pos, rot) -> None:
+    """Put a body (a robot's base or a passive object) at a world pose and stop it: through its free joint,
+    or by moving a static body in the model."""
+    joint = free_joint(model, body)
+    if joint is not None:
+        adr, dof = joint
+        data.qpos[adr:adr + 3] = pos
+        data.qpos[adr + 3:adr + 7] = matrix_to_quat(rot)
+        data.qvel[dof:dof + 6] = 0.0
+    else:
+        model.body_pos[body] = pos
+        model.body_quat[body] = matrix_to_quat(rot)
+    mujoco.mj_kinematics(model, data)
+
+
 class RobotHandle:
     def __init__(self, sim, name: str, properties):
         m = sim.model
@@ -16,12 +40,7 @@ class RobotHandle:
         self.properties = properties
         self.ground = bool(getattr(properties, "GroundRobot", False))
         self.body_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
-        self.qpos_adr = self.qvel_adr = None
-        if m.body_jntnum[self.body_id] > 0:
-            jnt = m.body_jntadr[self.body_id]
-            if m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
-                self.qpos_adr = int(m.jnt_qposadr[jnt])
-                self.qvel_adr = int(m.jnt_dofadr[jnt])
+        self.qpos_adr, self.qvel_adr = free_joint(m, self.body_id) or (None, None)
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"{name}/{axis}") for axis in ("vx", "vy", "wz")]
         self.servo = ids if min(ids) >= 0 else None
 
@@ -75,15 +94,7 @@ class RobotHandle:
 
     def set_pose(self, pos, rot) -> None:
         """Put the base at a world pose and stop it."""
-        d = self.sim.data
-        if self.free:
-            d.qpos[self.qpos_adr:self.qpos_adr + 3] = pos
-            d.qpos[self.qpos_adr + 3:self.qpos_adr + 7] = matrix_to_quat(rot)
-            d.qvel[self.qvel_adr:self.qvel_adr + 6] = 0.0
-        else:
-            self.sim.model.body_pos[self.body_id] = pos
-            self.sim.model.body_quat[self.body_id] = matrix_to_quat(rot)
-        mujoco.mj_kinematics(self.sim.model, d)
+        place(self.sim.model, self.sim.data, self.body_id, pos, rot)
 
     def place_frame(self, frame_body: int, pos, rot) -> None:
         """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""

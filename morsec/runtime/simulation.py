@@ -26,7 +26,7 @@ from morsec.middleware.sync import SyncServer
 from morsec.middleware.text import TextStream
 from morsec.modifiers.registry import modifier_class
 from morsec.runtime.clock import Clock, Periodic
-from morsec.runtime.robot import RobotHandle
+from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.scene.models import StreamSpec
 from morsec.services.requests import RequestManager
 from morsec.services.supervision import Communication, Supervision, TimeServices
@@ -312,33 +312,17 @@ class Simulation:
                 comp.fail_once(err)
 
     def place_body(self, body: int, pos, rot) -> None:
-        for robot in self.robots:
-            if robot.handle.body_id == body:
-                robot.handle.set_pose(pos, rot)
-                return
-        m = self.model
-        jnt = m.body_jntadr[body] if m.body_jntnum[body] else -1
-        from morsec.geometry import matrix_to_quat
-        if jnt >= 0 and m.jnt_type[jnt] == mujoco.mjtJoint.mjJNT_FREE:
-            adr, dof = m.jnt_qposadr[jnt], m.jnt_dofadr[jnt]
-            self.data.qpos[adr:adr + 3] = pos
-            self.data.qpos[adr + 3:adr + 7] = matrix_to_quat(rot)
-            self.data.qvel[dof:dof + 6] = 0.0
-        else:
-            m.body_pos[body] = pos
-            m.body_quat[body] = matrix_to_quat(rot)
-        mujoco.mj_kinematics(m, self.data)
+        place(self.model, self.data, body, pos, rot)
         if body in self.frozen:
-            self.set_frozen(body, True)
+            self.set_frozen(body, True)  # frozen where it was put
 
     def set_frozen(self, body: int, frozen: bool) -> None:
-        m = self.model
-        jnt = m.body_jntadr[body] if m.body_jntnum[body] else -1
-        if jnt < 0 or m.jnt_type[jnt] != mujoco.mjtJoint.mjJNT_FREE:
+        joint = free_joint(self.model, body)
+        if joint is None:
             return  # static bodies are frozen already
-        adr = m.jnt_qposadr[jnt]
         if frozen:
-            self.frozen[body] = (adr, m.jnt_dofadr[jnt], self.data.qpos[adr:adr + 7].copy())
+            adr, dof = joint
+            self.frozen[body] = (adr, dof, self.data.qpos[adr:adr + 7].copy())
         else:
             self.frozen.pop(body, None)
 
