@@ -18,11 +18,17 @@ reads or writes `local_data` only: components never talk to a middleware.
 from __future__ import annotations
 
 import copy
+import inspect
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Any, Callable, ClassVar
 
+import mujoco
+import numpy as np
 from pydantic import BaseModel, ConfigDict
+
+from morsec.errors import did_you_mean
+from morsec.geometry import matrix_to_euler
 
 
 class ComponentProperties(BaseModel):
@@ -100,7 +106,6 @@ class Component:
 
     @classmethod
     def doc(cls) -> str:
-        import inspect
         return inspect.cleandoc(cls.__doc__ or "")
 
 
@@ -189,7 +194,6 @@ class Device(Component):
     def set_property(self, prop_name: str, prop_val: Any) -> None:
         """Change one property (validated against the component's property model)."""
         if prop_name not in type(self.properties).model_fields:
-            from morsec.errors import did_you_mean
             raise ValueError(f"no property {prop_name!r}{did_you_mean(prop_name, type(self.properties).model_fields)}")
         setattr(self.properties, prop_name, prop_val)
 
@@ -207,13 +211,10 @@ class Device(Component):
 
     def euler(self) -> tuple[float, float, float]:
         """(roll, pitch, yaw) of this component's frame, XYZ Euler, rad."""
-        from morsec.geometry import matrix_to_euler
         return matrix_to_euler(self.rotation())
 
     def velocity(self, local: bool = True):
         """(linear, angular) velocity of this component's frame, in its own frame or the world's."""
-        import mujoco
-        import numpy as np
         res = np.zeros(6)
         # XBODY: the body's own frame (xpos, xmat); BODY would be its inertial frame, which MuJoCo puts
         # elsewhere for a massless component body
