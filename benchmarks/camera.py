@@ -33,7 +33,7 @@ import morsec  # noqa: E402,F401  (chooses MUJOCO_GL before mujoco is imported)
 import mujoco  # noqa: E402
 
 from timing import batch, compare  # noqa: E402  (benchmarks/timing.py)
-from morsec.catalogue import load_catalogue  # noqa: E402
+from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.middleware.socket_streams import encode  # noqa: E402
 from morsec.testing import simulate  # noqa: E402
 

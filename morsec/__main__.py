@@ -1,3 +1,4 @@
 from morsec.cli import main
 
+
 main()

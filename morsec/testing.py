@@ -16,8 +16,8 @@ from typing import Any, Iterator
 
 import yaml
 
-from morsec.catalogue import load_catalogue
-from morsec.compiler.build import build_scene
+from morsec.component.catalogue import load_catalogue
+from morsec.app.project import build_scene
 from morsec.runtime.simulation import RunOptions, Simulation
 
 
@@ -76,7 +76,7 @@ class ServiceClient:
         self.count = 0
 
     def send(self, component: str, service: str, *args) -> str:
-        from morsec.services.requests import Request
+        from morsec.component.services import Request
         self.count += 1
         rid = f"r{self.count}"
         self.harness.sim.requests.handle(Request(rid, component, service, list(args), self._reply, client=self))

@@ -18,7 +18,7 @@ def repo_root() -> Path:
 def build_yaml(tmp_path):
     """`build_yaml(text, name="scene")`: write `text` to tmp_path/<name>.yaml, build it with the real
     compiler into tmp_path/<name>.build and return that folder."""
-    from morsec.compiler.build import build_scene
+    from morsec.app.project import build_scene
 
     def build(text: str, name: str = "scene") -> Path:
         source = tmp_path / f"{name}.yaml"

@@ -113,7 +113,7 @@ def scene_file(folder: Path, content: dict | None = None, name: str = "scene") -
 
 def build_folder(scene_path: Path, out: Path) -> Path:
     """`morsec build scene_path -o out`, in this process."""
-    from morsec.compiler.build import build_scene
+    from morsec.app.project import build_scene
     return build_scene(Path(scene_path), Path(out))
 
 

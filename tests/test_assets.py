@@ -4,7 +4,7 @@ from a robot's URDF, and a clear error listing the paths searched when a file is
 import pytest
 import trimesh
 
-from morsec.compiler.build import build_scene
+from morsec.app.project import build_scene
 from morsec.errors import SceneError
 
 URDF = """<?xml version="1.0"?>

@@ -11,11 +11,13 @@ from pathlib import Path
 
 import pytest
 
-from morsec.builder.script import morsec_args, record_script
-from morsec.catalogue import load_catalogue
-from morsec.compiler.build import build_scene, component_entries
+from morsec.cli.standalone import morsec_args
+from morsec.frontends.builder.script import record_script
+from morsec.component.catalogue import load_catalogue
+from morsec.app.project import build_scene
+from morsec.compiler.build import component_entries
 from morsec.errors import MorsecError, SceneError
-from morsec.scene.loader import load_scene
+from morsec.frontends import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "scenes"
@@ -613,8 +615,8 @@ def test_plain_python_runs(tmp_path):
 
 
 def test_recording_from_python_code():
-    from morsec.builder.script import recording
-    from morsec.scene.loader import validate_scene
+    from morsec.builder import recording
+    from morsec.scene import validate_scene
     with recording() as session:
         from morsec.builder import ATRV, Cube, Environment, Pose
         rover = ATRV()

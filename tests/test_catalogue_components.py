@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import yourdfpy
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 
 CATALOGUE = load_catalogue(Path(__file__).parent)  # what build_scene sees for a scene outside a project
 ROBOTS = CATALOGUE.ids("robots")

@@ -11,11 +11,11 @@ from pathlib import Path
 import pytest
 import yaml
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.compiler.build import compile_scene
-from morsec.convert import convert_scene, to_toml, to_yaml
+from morsec.app.convert import convert_scene, to_toml, to_yaml
 from morsec.errors import SceneError
-from morsec.scene.loader import load_scene
+from morsec.frontends import load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "scenes"

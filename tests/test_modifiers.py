@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from morsec.compiler.build import build_scene
+from morsec.app.project import build_scene
 from morsec.errors import SceneError
 from morsec.testing import simulate
 

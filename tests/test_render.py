@@ -6,7 +6,7 @@ import sys
 import numpy as np
 import pytest
 
-from morsec.png import read_png, write_png
+from morsec.kits.png import read_png, write_png
 
 SCENE = """
 environment:

@@ -20,10 +20,11 @@ from pathlib import Path
 import mujoco
 import pytest
 
-from morsec.catalogue import load_catalogue
-from morsec.compiler.build import build_scene, compile_scene
+from morsec.component.catalogue import load_catalogue
+from morsec.app.project import build_scene
+from morsec.compiler.build import compile_scene
 from morsec.errors import SceneError
-from morsec.scene import load_scene
+from morsec.frontends import load_scene
 
 ROOT = Path(__file__).resolve().parent.parent
 FIXTURES = Path(__file__).resolve().parent / "fixtures" / "errors"

@@ -10,7 +10,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from morsec.compiler.build import build_scene
+from morsec.app.project import build_scene
 
 SCENES_DIR = Path(__file__).resolve().parent.parent / "scenes"
 SCENE_SUFFIXES = (".yaml", ".yml", ".toml")

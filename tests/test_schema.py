@@ -12,7 +12,7 @@ import jsonschema
 import pytest
 import yaml
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.scene.schema import json_schema_text
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -1,4 +1,4 @@
-"""`morsec build`: the resolved IR -> a build folder, written whole or not at all.
+"""The resolved IR -> the files of a build folder, written whole or not at all.
 
     scene.xml        MJCF that MuJoCo compiles without warnings
     robots/*.urdf    one per robot, xacro-expanded
@@ -19,27 +19,17 @@ from xml.sax.saxutils import escape as xml_escape
 import mujoco
 
 from morsec import __version__
-from morsec.catalogue import Catalogue, level_class, load_catalogue
+from morsec.component.catalogue import Catalogue, level_class
 from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import middleware_config
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
 from morsec.errors import SceneError, yaml_path
-from morsec.scene.loader import load_scene
 from morsec.scene.naming import join
 
 MANIFEST = "manifest.json"
 _NAME_PLACEHOLDER = "morsec__robot__name__placeholder"
 FORMAT_VERSION = 1
-
-
-def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
-    source = Path(source)
-    cat = catalogue or load_catalogue(source.parent)
-    scene = load_scene(source, cat)
-    files = compile_scene(scene, cat)
-    write_build(files, Path(out_dir))
-    return Path(out_dir)
 
 
 def compile_scene(scene, cat: Catalogue) -> dict[str, str]:

@@ -16,9 +16,9 @@ from markupsafe import Markup
 import numpy as np
 
 from morsec import __version__
-from morsec.catalogue import Catalogue
+from morsec.component.catalogue import Catalogue
 from morsec.errors import SceneError
-from morsec.geometry import euler_to_quat, fmt, fmt_vec
+from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec
 from morsec.resources import data_dir
 from morsec.scene.naming import join
 from morsec.compiler.assets import Assets, asset_dir

@@ -8,7 +8,7 @@ import logging
 
 from morsec.middleware.poller import Connection, Poller, Server
 from morsec.middleware.socket_streams import _plain, decode
-from morsec.services.requests import FAILED, Request, RequestManager
+from morsec.component.services import FAILED, Request, RequestHandler
 
 log = logging.getLogger("morsec.middleware.services")
 
@@ -24,7 +24,7 @@ def format_response(request_id: str, status: str, result) -> bytes:
 
 
 class ServiceServer(Server):
-    def __init__(self, poller: Poller, requests: RequestManager, host: str, port: int, attempts: int):
+    def __init__(self, poller: Poller, requests: RequestHandler, host: str, port: int, attempts: int):
         super().__init__(poller, host, port, attempts)
         self.requests = requests
         self.discarding: set[Connection] = set()

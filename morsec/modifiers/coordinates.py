@@ -8,7 +8,7 @@ import math
 
 from pydantic import Field
 
-from morsec.geometry import normalize_angle
+from morsec.kits.geometry import normalize_angle
 from morsec.modifiers.base import Modifier, ModifierParams
 
 FEET_PER_METRE = 3.2808399

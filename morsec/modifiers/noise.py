@@ -7,7 +7,7 @@ import math
 import numpy as np
 from pydantic import ConfigDict, Field
 
-from morsec.geometry import normalize_angle
+from morsec.kits.geometry import normalize_angle
 from morsec.modifiers.base import Modifier, ModifierParams
 
 Std = float | dict[str, float]

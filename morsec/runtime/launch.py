@@ -1,4 +1,4 @@
-"""From what the user names (a scene file or a build folder) to a running simulation."""
+"""A build folder to a running simulation: check the folder, start, stop on SIGINT/SIGTERM."""
 
 from __future__ import annotations
 
@@ -6,32 +6,10 @@ import json
 import signal
 from pathlib import Path
 
-from morsec.catalogue import Catalogue, load_catalogue
-from morsec.compiler.build import FORMAT_VERSION, MANIFEST, compile_scene, write_build
+from morsec.component.catalogue import Catalogue
+from morsec.compiler.build import FORMAT_VERSION, MANIFEST
 from morsec.errors import RuntimeFailure
 from morsec.runtime.simulation import RunOptions, Simulation
-from morsec.scene import load_scene
-
-
-def prepare_build(source: Path, out: Path | None = None) -> tuple[Path, Catalogue]:
-    """A build folder for `source`: itself if it is one, else compiled (rewritten only when it changed)."""
-    source = Path(source)
-    if source.is_dir() and (source / MANIFEST).is_file():
-        return source, load_catalogue(Path.cwd())
-    cat = load_catalogue(source.parent)
-    files = compile_scene(load_scene(source, cat), cat)
-    out_dir = Path(out) if out else Path("build") / source.stem
-    if not _same(out_dir, files):
-        write_build(files, out_dir)
-    return out_dir, cat
-
-
-def _same(out_dir: Path, files: dict[str, str]) -> bool:
-    manifest = out_dir / MANIFEST
-    try:
-        return manifest.read_text(encoding="utf-8") == files[MANIFEST]
-    except OSError:
-        return False
 
 
 # what the runtime reads from a build folder: a damaged one, or one from another morsec, fails in one line

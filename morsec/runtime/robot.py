@@ -5,7 +5,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
 
 def free_joint(model, body: int) -> tuple[int, int] | None:

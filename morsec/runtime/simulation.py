@@ -16,7 +16,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from morsec.catalogue import Catalogue, level_class
+from morsec.component.catalogue import Catalogue, level_class
 from morsec.constants import SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
 from morsec.errors import RuntimeFailure
 from morsec.middleware.poller import Poller
@@ -28,8 +28,8 @@ from morsec.modifiers.registry import modifier_class
 from morsec.runtime.clock import Clock, Periodic
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.scene.models import StreamSpec
-from morsec.services.requests import RequestManager
-from morsec.services.supervision import Communication, Supervision, TimeServices
+from morsec.runtime.requests import RequestManager
+from morsec.runtime.supervision import Communication, Supervision, TimeServices
 
 log = logging.getLogger("morsec.runtime")
 
@@ -267,7 +267,7 @@ class Simulation:
     def geo(self):
         """The scene's geodetic frame (environment longitude/latitude/altitude); ValueError if not set."""
         if getattr(self, "_geo", None) is None:
-            from morsec.geodesy import GeoFrame
+            from morsec.kits.geodesy import GeoFrame
             self._geo = GeoFrame.from_properties(self.scene["environment"]["properties"])
         return self._geo
 

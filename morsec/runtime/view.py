@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from typing import Literal
 
 from morsec.errors import RuntimeFailure
 
@@ -29,6 +30,9 @@ class View:
 
     def close(self) -> None:
         self._close()
+
+
+ViewKind = Literal["web", "native"]
 
 
 def open_view(kind: str, model, data, bind: str, port: int, display_options: dict) -> View:

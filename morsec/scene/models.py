@@ -57,6 +57,7 @@ Size3 = Annotated[list[Positive], Field(min_length=3, max_length=3)]
 Color = Annotated[list[Annotated[float, Field(ge=0, le=1)]], Field(min_length=3, max_length=4)]
 Basic = Union[bool, int, float, str]
 PropertyBag = dict[str, Basic]
+TimeStrategy = Literal["best_effort", "fixed_step"]
 Middleware = Literal["socket", "text"]
 ServiceMiddleware = Literal["socket"]
 
@@ -184,7 +185,7 @@ class ZoneSpec(Strict):
 
 
 class TimeSpec(Strict):
-    strategy: Literal["best_effort", "fixed_step"] = Field(
+    strategy: TimeStrategy = Field(
         "best_effort", description="set_time_strategy: follow the wall clock, or run as fast as possible")
     frequency: Positive = Field(DEFAULT_FREQUENCY, description="simulator_frequency: main loop, Hz")
     scale: Positive = Field(1.0, description="set_time_scale: simulated seconds per wall-clock second")

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from morsec.catalogue import Catalogue
+from morsec.component.catalogue import Catalogue
 from morsec.errors import SceneError, yaml_path
 from morsec.scene.naming import assign_names
-from morsec.scene.positions import SourceMap
+from morsec.scene.sourcemap import SourceMap
 
 
 def add_robot_defaults(data: Any, cat: Catalogue) -> None:

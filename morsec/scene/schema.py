@@ -10,8 +10,8 @@ from typing import Annotated, Any, Literal, Union
 from pydantic import BaseModel, Field, create_model
 from typing_extensions import TypeAliasType
 
-from morsec.catalogue import Catalogue, camel_case
-from morsec.component import ComponentProperties
+from morsec.component.catalogue import Catalogue, camel_case
+from morsec.component.contract import ComponentProperties
 from morsec.scene import models as m
 
 GENERATED_MODULE = "morsec.scene.generated"

@@ -11,7 +11,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.testing import simulate
 
 G = 9.81
@@ -265,7 +265,7 @@ def test_quadrotor_hovers_then_climbs(tmp_path):
     ("x", 0, 1, +1),   # rotor 1 (front left) faster: positive roll, negative pitch
 ])
 def test_quadrotor_rotor_torques(configuration, rotor, axis, sign, tmp_path):
-    from morsec.geometry import matrix_to_euler
+    from morsec.kits.geometry import matrix_to_euler
     with simulate(quadrotor(configuration), tmp_path) as sim:
         w = hover_speed(sim.sim.robots[0].handle.mass)
         engines = [w] * 4
@@ -291,7 +291,7 @@ def test_quadrotor_dynamic_control_declares_morse_properties():
 
 
 def test_wheel_actuator_on_a_robot_without_wheels_is_a_scene_error(tmp_path):
-    from morsec.compiler.build import build_scene
+    from morsec.app.project import build_scene
     from morsec.errors import SceneError
     source = tmp_path / "s.yaml"
     source.write_text("robots:\n  - name: r\n    type: atrv\n    components:\n      - {name: m, type: motion_vw_diff}\n")

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.testing import simulate
 
 # a 1.0 kg rigid body the size of a quadrotor, used when the catalogue has no `quadrotor` robot

@@ -12,7 +12,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.compiler.urdf import expand_xacro
 from morsec.testing import simulate
 

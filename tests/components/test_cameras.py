@@ -18,10 +18,10 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from morsec.camera import CameraProperties, focal_pixels, fovy_degrees, intrinsic_matrix, optical_rotation
-from morsec.catalogue import load_catalogue
+from morsec.kits.camera import CameraProperties, focal_pixels, fovy_degrees, intrinsic_matrix, optical_rotation
+from morsec.component.catalogue import load_catalogue
 from morsec.errors import RuntimeFailure
-from morsec.services.requests import Request
+from morsec.component.services import Request
 from morsec.testing import simulate
 
 CATALOGUE = load_catalogue(Path(__file__).parent)

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from morsec.catalogue import load_catalogue
+from morsec.component.catalogue import load_catalogue
 from morsec.middleware.socket_streams import encode
 from morsec.testing import simulate
 

@@ -70,7 +70,7 @@ def robot_bodies(model: mujoco.MjModel, root: int) -> set[int]:
 
 @pytest.mark.parametrize("robot", sorted(ROBOTS))
 def test_robot_is_in_the_catalogue_under_its_morse_name(robot, tmp_path):
-    from morsec.catalogue import load_catalogue
+    from morsec.component.catalogue import load_catalogue
     cat = load_catalogue(tmp_path)
     cls = cat.get("robots", ROBOTS[robot][0])
     assert cls.id == robot and cls.builder_name == ROBOTS[robot][0]

@@ -27,7 +27,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, async_service, service
-from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 from morsec.runtime.robot import JointServos
 
 log = logging.getLogger("morsec.actuators.armature")

@@ -18,7 +18,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, service
-from morsec.geometry import matrix_to_quat
+from morsec.kits.geometry import matrix_to_quat
 
 
 def _rx(a):

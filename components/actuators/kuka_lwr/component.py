@@ -5,7 +5,7 @@ kinematics (IK target `kuka_7`, the tool flange), streaming joint targets in. Co
 (a gripper) are mounted on the flange, link kuka_7, whose z axis points out of the arm.
 """
 
-from morsec.catalogue import component_class
+from morsec.component.catalogue import component_class
 
 Armature = component_class("actuators", "armature")
 

@@ -7,7 +7,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField
-from morsec.geometry import euler_to_quat, normalize_angle, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, normalize_angle, quat_to_matrix
 
 
 def _no_default(schema: dict) -> None:

@@ -21,7 +21,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, service
-from morsec.geometry import matrix_to_euler, normalize_angle
+from morsec.kits.geometry import matrix_to_euler, normalize_angle
 
 
 class RotorcraftVelocity(Actuator):

@@ -25,7 +25,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
-from morsec.geometry import matrix_to_euler, normalize_angle
+from morsec.kits.geometry import matrix_to_euler, normalize_angle
 
 log = logging.getLogger("morsec.actuators.rotorcraft_waypoint")
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from morsec.component import Actuator, DataField, service
-from morsec.geometry import euler_to_quat, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 
 
 class SecondOrder:

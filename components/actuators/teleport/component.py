@@ -1,7 +1,7 @@
 import numpy as np
 
 from morsec.component import Actuator, DataField, service
-from morsec.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
 
 
 class Teleport(Actuator):

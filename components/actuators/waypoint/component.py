@@ -30,7 +30,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
-from morsec.geometry import normalize_angle
+from morsec.kits.geometry import normalize_angle
 
 log = logging.getLogger("morsec.actuators.waypoint")
 

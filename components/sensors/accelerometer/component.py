@@ -5,7 +5,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
-from morsec.geometry import matrix_to_quat
+from morsec.kits.geometry import matrix_to_quat
 
 VEC3 = "vec3<float>"
 

@@ -6,7 +6,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
-from morsec.geometry import matrix_to_quat, normalize_angle
+from morsec.kits.geometry import matrix_to_quat, normalize_angle
 
 
 class Attitude(Sensor):

@@ -3,8 +3,8 @@
 import numpy as np
 from pydantic import Field
 
-from morsec.camera import DepthCameraProperties, b64, depth_points, parse_keep_list, pixel_rays
-from morsec.catalogue import component_class
+from morsec.kits.camera import DepthCameraProperties, b64, depth_points, parse_keep_list, pixel_rays
+from morsec.component.catalogue import component_class
 from morsec.component import DataField
 
 VideoCamera = component_class("sensors", "video_camera")

@@ -1,7 +1,7 @@
 """MORSE's DepthVideoCamera: a depth image in metres."""
 
-from morsec.camera import DepthCameraProperties
-from morsec.catalogue import component_class
+from morsec.kits.camera import DepthCameraProperties
+from morsec.component.catalogue import component_class
 from morsec.component import DataField
 
 VideoCamera = component_class("sensors", "video_camera")

@@ -8,8 +8,8 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
-from morsec.geomagnetism import decimal_year, field_in_scene
-from morsec.geometry import matrix_to_quat, transpose_apply
+from morsec.kits.geomagnetism import decimal_year, field_in_scene
+from morsec.kits.geometry import matrix_to_quat, transpose_apply
 
 log = logging.getLogger("morsec.sensors.imu")
 

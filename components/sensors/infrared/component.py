@@ -1,6 +1,6 @@
 from pydantic import Field
 
-from morsec.catalogue import component_class
+from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
 

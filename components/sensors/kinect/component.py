@@ -2,7 +2,7 @@
 
 from pydantic import Field, model_validator
 
-from morsec.camera import CameraProperties, CameraSensor, CameraView, b64
+from morsec.kits.camera import CameraProperties, CameraSensor, CameraView, b64
 from morsec.component import DataField
 
 IDENTITY = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]

@@ -4,7 +4,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import ComponentProperties, DataField, Sensor
-from morsec.geomagnetism import decimal_year, field_in_scene
+from morsec.kits.geomagnetism import decimal_year, field_in_scene
 
 RELOCATE_M = 1000.0  # the field is recomputed when the sensor has moved this far
 # the sensor frame (x forward, y left, z up) relabelled as the `ned` modifier relabels the scene:

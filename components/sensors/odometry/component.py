@@ -1,7 +1,7 @@
 import math
 
 from morsec.component import DataField, Level, Sensor
-from morsec.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
+from morsec.kits.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
 
 
 

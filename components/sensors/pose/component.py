@@ -1,5 +1,5 @@
 from morsec.component import DataField, Sensor
-from morsec.geometry import euler_of_xmat
+from morsec.kits.geometry import euler_of_xmat
 
 
 class Pose(Sensor):

@@ -7,9 +7,9 @@ import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.camera import CameraProperties
+from morsec.kits.camera import CameraProperties
 from morsec.component import DataField, Sensor
-from morsec.geometry import matrix_to_quat
+from morsec.kits.geometry import matrix_to_quat
 
 SEEN_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)  # what a camera renders: geom groups 0-2
 HIDDEN_GROUP = 5  # where the carrying robot's geoms are parked while the occlusion rays are cast

@@ -6,9 +6,9 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.camera import optical_rotation
-from morsec.catalogue import component_class
-from morsec.geometry import euler_to_quat
+from morsec.kits.camera import optical_rotation
+from morsec.component.catalogue import component_class
+from morsec.kits.geometry import euler_to_quat
 
 DepthCamera = component_class("sensors", "depth_camera")
 

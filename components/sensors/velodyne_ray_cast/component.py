@@ -3,7 +3,7 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.catalogue import component_class
+from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
 

@@ -1,6 +1,6 @@
 """MORSE's VideoCamera: RGBA pictures rendered by MuJoCo's offscreen renderer (see morsec/camera.py)."""
 
-from morsec.camera import CameraProperties, CameraSensor, CameraView, b64
+from morsec.kits.camera import CameraProperties, CameraSensor, CameraView, b64
 from morsec.component import DataField
 
 

@@ -6,7 +6,7 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.camera import (CameraSensor, CameraView, DepthCameraProperties, b64, depth_points, optical_rotation,
+from morsec.kits.camera import (CameraSensor, CameraView, DepthCameraProperties, b64, depth_points, optical_rotation,
                            parse_keep_list, pixel_rays)
 from morsec.component import DataField
 

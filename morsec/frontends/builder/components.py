@@ -13,9 +13,9 @@ import os
 from pathlib import Path
 from typing import Any, ClassVar, get_args
 
-from morsec.builder import session as _session
-from morsec.builder.session import BuilderAttributeError, BuilderError
-from morsec.catalogue import camel_case, project_root
+from morsec.frontends.builder import session as _session
+from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
+from morsec.component.catalogue import camel_case, project_root
 from morsec.errors import did_you_mean, one_of
 from morsec.scene import models
 
@@ -66,6 +66,7 @@ class AbstractComponent:
     """Base of every builder object: name, transform, properties, children, middleware bindings."""
 
     _kind: ClassVar[str] = "component"  # robot, device, object, zone or environment
+    _builder_node: ClassVar[bool] = True  # what the session recognises as a builder object (session.is_node)
     _type: ClassVar[str | None] = None  # the catalogue type this class places (generated classes set it)
     _classpath: ClassVar[str | None] = None
 

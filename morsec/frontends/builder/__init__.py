@@ -1,4 +1,4 @@
-"""MORSE's builder API, recording a morsec scene: `from morsec.builder import *`.
+"""MORSE's builder API, recording a morsec scene: `from morsec.frontends.builder import *`.
 
 Inside `morsec build/run/check/convert script.py`, `from morse.builder import *` gives this same
 module (an import hook active while the script runs). Besides the fixed classes below, every robot,
@@ -10,13 +10,13 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from morsec.builder.components import (AbstractComponent, Actuator, ActuatorCreator, CatalogueProp, Component,
+from morsec.frontends.builder.components import (AbstractComponent, Actuator, ActuatorCreator, CatalogueProp, Component,
                                        ComponentCreator, Cone, Cube, Cylinder, FakeRobot, GroundRobot, IcoSphere,
                                        Mesh, PassiveObject, Plane, Robot, Sensor, SensorCreator, Sphere, Torus,
                                        WheeledRobot, Zone)
-from morsec.builder.environment import Environment, TimeStrategies
-from morsec.builder.session import BuilderError, current_catalogue
-from morsec.catalogue import Catalogue
+from morsec.frontends.builder.environment import Environment, TimeStrategies
+from morsec.frontends.builder.session import BuilderError, current_catalogue
+from morsec.component.catalogue import Catalogue
 
 MorseBuilderError = BuilderError
 
@@ -57,13 +57,13 @@ def _device_init(base):
     return __init__
 
 
-def _names() -> list[str]:
+def builder_names() -> list[str]:
     return sorted(set(FIXED) | set(catalogue_classes(current_catalogue())))
 
 
 def __getattr__(name: str):
     if name == "__all__":
-        return _names()
+        return builder_names()
     if name[:1].isupper():
         classes = catalogue_classes(current_catalogue())
         if name in classes:
@@ -72,4 +72,4 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_names()))
+    return sorted(set(globals()) | set(builder_names()))

@@ -10,25 +10,11 @@ from __future__ import annotations
 import inspect
 import logging
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
-from morsec.component import ServiceInfo
+from morsec.component.services import FAILED, PREEMPTED, SUCCESS, Request, ServiceInfo
 
 log = logging.getLogger("morsec.services")
-
-SUCCESS, FAILED, PREEMPTED = "SUCCESS", "FAILED", "PREEMPTED"
-
-
-@dataclass
-class Request:
-    id: str
-    component: str
-    service: str
-    args: list
-    reply: Callable[[str, str, Any], None]  # (id, status, result)
-    client: Any = None  # the connection it came on, for `cancel`
-    info: ServiceInfo | None = None
-
 
 @dataclass
 class Exposed:

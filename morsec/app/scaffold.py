@@ -11,7 +11,7 @@ from pathlib import Path
 
 import jinja2
 
-from morsec.catalogue import PROJECT_FILE, camel_case, is_builtin, load_catalogue, project_root
+from morsec.component.catalogue import PROJECT_FILE, camel_case, is_builtin, load_catalogue, project_root
 from morsec.errors import MorsecError
 from morsec.resources import data_dir
 
@@ -149,5 +149,5 @@ def usage(kind: str, name: str) -> str:
 
 
 def _forget_catalogue() -> None:
-    from morsec import catalogue
+    from morsec.component import catalogue
     catalogue._load.cache_clear()

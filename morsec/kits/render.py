@@ -75,7 +75,7 @@ def render_build(build_dir: Path, out: Path, camera: str | None = None, width: i
         image = renderer.render()
     finally:
         renderer.close()
-    from morsec.png import write_png
+    from morsec.kits.png import write_png
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     write_png(out, np.asarray(image))

@@ -14,12 +14,12 @@ import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
-from morsec.catalogue import Catalogue, load_catalogue
+from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.constants import DUPLICATE_SUFFIX, SEPARATOR
 from morsec.errors import SceneError
-from morsec.scene.positions import SourceMap
+from morsec.scene.sourcemap import SourceMap
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 
@@ -59,6 +59,23 @@ def current(create: bool = True) -> "Session | None":
         runs_a_script = script is not None and script.suffix == ".py"
         _standalone = Session(load_catalogue(folder), script, standalone=runs_a_script)
     return _standalone
+
+
+# what `python mysim.py` does at create(): set by the public `morsec.builder` (it hands the scene to the CLI)
+_standalone_handler: "Callable[[Session], None] | None" = None
+
+
+def on_standalone_create(handler: "Callable[[Session], None]") -> None:
+    global _standalone_handler
+    _standalone_handler = handler
+
+
+def finish_standalone(session: "Session") -> None:
+    if _standalone_handler is None:
+        sys.stderr.write("error: this script ran as plain Python without `morsec.builder`; "
+                         "use `morsec build SCRIPT` or `from morsec.builder import *`\n")
+        raise SystemExit(2)
+    _standalone_handler(session)
 
 
 def push(session: "Session") -> None:
@@ -165,31 +182,28 @@ class Session:
 
     def scan(self, frame_or_namespace) -> None:
         """Name unnamed, unparented objects after the variables that hold them (MORSE's close_context)."""
-        from morsec.builder.components import AbstractComponent
-        from morsec.builder.environment import Environment
         if isinstance(frame_or_namespace, dict):
             names = dict(frame_or_namespace)
         else:
             names = dict(frame_or_namespace.f_locals)
         owner = names.get("self")
-        if isinstance(owner, AbstractComponent):
+        if is_node(owner):
             merged = {k: v for k, v in vars(owner).items() if not k.startswith("_")}
             merged.update(names)
             names = merged
         for var, value in names.items():
-            if var == "self" or not isinstance(value, AbstractComponent) or isinstance(value, Environment):
+            if var == "self" or not is_node(value) or value._kind == "environment":
                 continue
             if value._session is self and value._parent is None and value._auto_name is None:
                 value._auto_name = var
 
     def name_from(self, frame, obj: Any) -> None:
         """Name `obj` after the variable that holds it in `frame` (MORSE's append)."""
-        from morsec.builder.components import AbstractComponent
         if frame is None or obj._auto_name is not None:
             return
         names = dict(frame.f_locals)
         owner = names.get("self")
-        if isinstance(owner, AbstractComponent):
+        if is_node(owner):
             merged = {k: v for k, v in vars(owner).items() if not k.startswith("_")}
             merged.update(names)
             names = merged
@@ -283,10 +297,14 @@ def frame_position(frame) -> Position:
     return frame.f_code.co_filename, line, col
 
 
+def is_node(value: Any) -> bool:
+    """Whether `value` is a builder object (an AbstractComponent: robot, device, object, zone, environment)."""
+    return getattr(type(value), "_builder_node", False)
+
+
 def jsonable(value: Any) -> Any:
     """A plain-data copy of a call's arguments (builder objects by name), for morse_only."""
-    from morsec.builder.components import AbstractComponent
-    if isinstance(value, AbstractComponent):
+    if is_node(value):
         return value.name
     if isinstance(value, dict):
         return {str(k): jsonable(v) for k, v in value.items() if v is not None}

@@ -1,4 +1,5 @@
-"""Scene files (YAML, TOML) -> validated, fully-resolved IR, or one SceneError naming file:line:column.
+"""Plain scene data from a front end (+ its SourceMap) -> validated, fully-resolved IR, or one SceneError
+naming file:line:column.
 
 A pydantic ValidationError becomes one line: the problem that comes first in the file, at its key or
 value, with its YAML path, a message that says what was expected and what was found, close matches
@@ -9,55 +10,19 @@ from __future__ import annotations
 
 import math
 import re
-from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
 
-from morsec.catalogue import Catalogue, load_catalogue
+from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
-from morsec.scene.positions import SourceMap, parse_toml, parse_yaml
+from morsec.scene.sourcemap import SourceMap
 from morsec.scene.resolve import add_robot_defaults, resolve
 from morsec.scene.schema import scene_model
 
-YAML_SUFFIXES = (".yaml", ".yml")
-TOML_SUFFIXES = (".toml",)
 VECTOR_KEYS = {"translate": "[x, y, z]", "rotate": "[x, y, z]", "location": "[x, y, z]",
                "rotation": "[x, y, z]", "size": "[x, y, z]", "clip": "[near, far]", "color": "[r, g, b] or [r, g, b, a]"}
-
-
-def read_scene_file(path: Path) -> tuple[Any, SourceMap]:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneError(f"{path}: no such scene file") from None
-    except IsADirectoryError:
-        raise SceneError(f"{path}: is a folder, not a scene file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SceneError(f"{path}: cannot read: {err}") from None
-    suffix = path.suffix.lower()
-    if suffix in YAML_SUFFIXES:
-        data, smap = parse_yaml(text, str(path))
-    elif suffix in TOML_SUFFIXES:
-        data, smap = parse_toml(text, str(path))
-    else:
-        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
-    if not isinstance(data, dict):
-        raise SceneError(f"a scene must be a mapping with environment, robots, objects and zones, got "
-                         f"{_describe(data)}", str(path), 1, 1)
-    return data, smap
-
-
-def load_scene(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
-    path = Path(path)
-    if path.suffix == ".py":
-        from morsec.builder.script import run_builder_script
-        return run_builder_script(path, catalogue)
-    data, smap = read_scene_file(path)
-    cat = catalogue or load_catalogue(path.parent)
-    return validate_scene(data, smap, cat)
 
 
 def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
@@ -149,7 +114,7 @@ def _explain(error: dict, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
             message = "must be a middleware name (socket) or a mapping {middleware: socket, port: ...}"
         if last in VECTOR_KEYS and kind == "list_type":
             message = f"must be a list {VECTOR_KEYS[last]}"
-        return path, f"{message}, got {_describe(got)}", False
+        return path, f"{message}, got {describe_value(got)}", False
     if kind in _BOUNDS:
         word, key = _BOUNDS[kind]
         return path, f"must be {word} {_show(ctx.get(key))}, got {_show(got)}", False
@@ -294,7 +259,7 @@ def _show(value: Any) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def _describe(value: Any) -> str:
+def describe_value(value: Any) -> str:
     if value is None:
         return "nothing (null)"
     if isinstance(value, dict):

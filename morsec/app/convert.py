@@ -18,10 +18,12 @@ from typing import Any
 
 import yaml
 
-from morsec.catalogue import Catalogue, load_catalogue
+from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.errors import MorsecError, SceneError
-from morsec.scene.loader import TOML_SUFFIXES, YAML_SUFFIXES, read_scene_file, validate_scene
-from morsec.scene.positions import SourceMap, parse_toml, parse_yaml
+from morsec.frontends.builder.script import record_script
+from morsec.frontends.text import TOML_SUFFIXES, YAML_SUFFIXES, parse_toml, parse_yaml, read_scene_file
+from morsec.scene.sourcemap import SourceMap
+from morsec.scene.validate import validate_scene
 
 SOURCES = (".py", *YAML_SUFFIXES, *TOML_SUFFIXES)
 TARGETS = (*YAML_SUFFIXES, *TOML_SUFFIXES)
@@ -31,7 +33,6 @@ def scene_source(path: Path, cat: Catalogue) -> tuple[dict, SourceMap]:
     """The scene as written: a builder script's recording, or a YAML/TOML file's data."""
     path = Path(path)
     if path.suffix.lower() == ".py":
-        from morsec.builder.script import record_script
         recording = record_script(path, cat)
         recording.report()
         return recording.data, recording.smap

@@ -1,42 +1,44 @@
-"""Read YAML and TOML into plain data plus a map from each key path to its (line, column) in the file.
-
-Paths are tuples of keys and list indices, e.g. ('robots', 0, 'components', 1, 'type').
-`keys[path]` is where the key itself is written, `values[path]` where its value starts.
-Lines and columns count from 1.
-"""
+"""The text front end: YAML and TOML scene files into plain data plus a SourceMap (line, column of every
+key and value), and the suffix table of scene formats."""
 
 from __future__ import annotations
 
 import re
 import tomllib
-from dataclasses import dataclass, field
+from pathlib import Path as FilePath
 from typing import Any
 
 import yaml
 
 from morsec.errors import SceneError, yaml_path
+from morsec.scene.sourcemap import Path, Position, SourceMap
+from morsec.scene.validate import describe_value
 
-Path = tuple
-Position = tuple[int, int]
+YAML_SUFFIXES = (".yaml", ".yml")
+TOML_SUFFIXES = (".toml",)
 
 
-@dataclass
-class SourceMap:
-    file: str
-    keys: dict[Path, Position] = field(default_factory=dict)
-    values: dict[Path, Position] = field(default_factory=dict)
-
-    def find(self, path: Path, *, key: bool = False) -> Position | None:
-        """The position of `path`, or of its nearest ancestor that has one."""
-        path = tuple(path)
-        while True:
-            table = (self.keys, self.values) if key else (self.values, self.keys)
-            for t in table:
-                if path in t:
-                    return t[path]
-            if not path:
-                return None
-            path = path[:-1]
+def read_scene_file(path: FilePath) -> tuple[Any, SourceMap]:
+    path = FilePath(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise SceneError(f"{path}: no such scene file") from None
+    except IsADirectoryError:
+        raise SceneError(f"{path}: is a folder, not a scene file") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise SceneError(f"{path}: cannot read: {err}") from None
+    suffix = path.suffix.lower()
+    if suffix in YAML_SUFFIXES:
+        data, smap = parse_yaml(text, str(path))
+    elif suffix in TOML_SUFFIXES:
+        data, smap = parse_toml(text, str(path))
+    else:
+        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
+    if not isinstance(data, dict):
+        raise SceneError(f"a scene must be a mapping with environment, robots, objects and zones, got "
+                         f"{describe_value(data)}", str(path), 1, 1)
+    return data, smap
 
 
 # ---------------------------------------------------------------- YAML

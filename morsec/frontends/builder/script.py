@@ -18,11 +18,13 @@ from pathlib import Path
 
 from pydantic import BaseModel
 
-from morsec.builder import session as _session
-from morsec.builder.hook import morse_import_hook
-from morsec.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
-from morsec.catalogue import Catalogue, load_catalogue
+from morsec.frontends.builder import builder_names
+from morsec.frontends.builder import session as _session
+from morsec.frontends.builder.hook import morse_import_hook
+from morsec.frontends.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
+from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.errors import MorsecError, SceneError, did_you_mean
+from morsec.scene.validate import validate_scene
 
 # recordings of scripts that ran as plain Python in this process (python mysim.py), by absolute path
 _preloaded: dict[str, Recording] = {}
@@ -30,7 +32,6 @@ _preloaded: dict[str, Recording] = {}
 
 def run_builder_script(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
     """The validated, resolved IR of a builder script (what load_scene gives for YAML)."""
-    from morsec.scene.loader import validate_scene
     path = Path(path)
     cat = catalogue or load_catalogue(path.parent)
     recording = record_script(path, cat)
@@ -139,35 +140,13 @@ def script_error(err: BaseException, path: Path) -> SceneError:
         message = f"{type(err).__name__}: {text[0]}" if text else type(err).__name__
         name = getattr(err, "name", None)
         if isinstance(err, NameError) and isinstance(name, str) and name[:1].isupper():
-            import morsec.builder as builder
-            message += (f"{did_you_mean(name, builder.__all__)} (no builder class of that name: "
+            message += (f"{did_you_mean(name, builder_names())} (no builder class of that name: "
                         "`morsec components` lists the catalogue)")
     return SceneError(message, file, line, col)
 
 
 # ---------------------------------------------------------------- python mysim.py
 
-def morsec_args(argv: list[str], script: str) -> list[str]:
-    """`python mysim.py -- run --fast` -> ['run', 'mysim.py', '--fast']; nothing after `--` -> build."""
-    rest = argv[argv.index("--") + 1:] if "--" in argv else []
-    if not rest or rest[0].startswith("-"):
-        rest = ["build", *rest]
-    return [rest[0], script, *rest[1:]]
-
-
-def standalone_main(session: Session) -> None:
-    """The script ran as plain Python: hand its recording to the `morsec` command line (exits)."""
-    from morsec.cli import app
-    main = sys.modules.get("__main__")
-    namespace = getattr(main, "__dict__", None)
-    script = session.script
-    if script is None:
-        sys.stderr.write("error: cannot tell which script is running; use `morsec build SCRIPT`\n")
-        raise SystemExit(2)
-    try:
-        session.end_of_script(namespace)
-        _preloaded[os.path.abspath(script)] = session.recording()
-    except MorsecError as err:
-        sys.stderr.write(f"error: {err}\n")
-        raise SystemExit(err.exit_code) from None
-    app(args=morsec_args(sys.argv[1:], str(script)), prog_name="morsec")
+def preload(script: Path, recording: Recording) -> None:
+    """The recording of a script that ran as plain Python, handed to the pipeline instead of running it again."""
+    _preloaded[os.path.abspath(script)] = recording

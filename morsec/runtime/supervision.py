@@ -7,8 +7,8 @@ import math
 import mujoco
 import numpy as np
 
-from morsec.component import async_service, service
-from morsec.geometry import euler_to_quat, quat_to_matrix
+from morsec.component.services import async_service, service
+from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 
 
 class Supervision:

@@ -1,6 +1,6 @@
 """`from morse.builder import *` inside a script that morsec runs: an import hook on sys.meta_path,
 installed only while the script executes, that answers `morse`, `morse.builder` and every
-`morse.builder.<module>` (sensors, actuators, robots, creator, ...) with views of `morsec.builder`.
+`morse.builder.<module>` (sensors, actuators, robots, creator, ...) with views of `morsec.frontends.builder`.
 No `morse` package is installed in the user's environment.
 """
 
@@ -17,10 +17,10 @@ BUILDER = "morse.builder"
 
 
 def _view(name: str) -> types.ModuleType:
-    """A module whose attributes (and `__all__`) are those of morsec.builder."""
-    import morsec.builder as target
+    """A module whose attributes (and `__all__`) are those of morsec.frontends.builder."""
+    import morsec.frontends.builder as target
 
-    module = types.ModuleType(name, f"morsec's view of MORSE's {name} (see morsec.builder)")
+    module = types.ModuleType(name, f"morsec's view of MORSE's {name} (see morsec.frontends.builder)")
 
     def __getattr__(attr: str):
         if attr == "__all__":

@@ -31,7 +31,8 @@ from typing import Any, Callable, ClassVar
 import numpy as np
 from pydantic import Field, model_validator
 
-from morsec.component import ComponentProperties, Sensor, async_service, service
+from morsec.component.contract import ComponentProperties, Sensor
+from morsec.component.services import async_service, service
 from morsec.errors import MorsecError
 
 SENSOR_WIDTH_MM = 32.0  # Blender's camera sensor (MORSE's BLENDER_HORIZONTAL_APERTURE)
@@ -133,7 +134,7 @@ class RendererPool:
         key = (int(width), int(height))
         renderer = self.renderers.get(key)
         if renderer is None:
-            from morsec.render import open_renderer
+            from morsec.kits.render import open_renderer
             renderer = open_renderer(self.model, key[0], key[1])
             self.renderers[key] = renderer
         return renderer

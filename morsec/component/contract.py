@@ -21,14 +21,15 @@ import copy
 import inspect
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any, Callable, ClassVar
+from typing import Any, ClassVar
 
 import mujoco
 import numpy as np
 from pydantic import BaseModel, ConfigDict
 
+from morsec.component.services import ServiceInfo, service
 from morsec.errors import did_you_mean
-from morsec.geometry import matrix_to_euler
+from morsec.kits.geometry import matrix_to_euler
 
 
 class ComponentProperties(BaseModel):
@@ -67,29 +68,6 @@ class Level:
     cls: str | None
     doc: str
     default: bool = False
-
-
-@dataclass(frozen=True)
-class ServiceInfo:
-    name: str
-    asynchronous: bool
-    interruptible: bool | None  # None: no policy, a second call fails
-
-
-def service(fn: Callable | None = None, *, name: str | None = None):
-    """A synchronous service: its return value is the answer."""
-    def mark(f):
-        f._morsec_service = ServiceInfo(name or f.__name__, False, None)
-        return f
-    return mark(fn) if fn else mark
-
-
-def async_service(fn: Callable | None = None, *, name: str | None = None, interruptible: bool | None = None):
-    """An asynchronous service: it starts work and later calls `self.completed(status, result)`."""
-    def mark(f):
-        f._morsec_service = ServiceInfo(name or f.__name__, True, interruptible)
-        return f
-    return mark(fn) if fn else mark
 
 
 class Component:

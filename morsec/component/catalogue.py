@@ -19,7 +19,7 @@ from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Literal, get_args, get_origin
 
-from morsec.component import KINDS, Component, ComponentProperties, Device
+from morsec.component.contract import KINDS, Component, ComponentProperties, Device
 from morsec.errors import MorsecError, did_you_mean
 from morsec.resources import data_dir
 

@@ -11,8 +11,8 @@ import os
 import sys
 from typing import Any
 
-from morsec.builder import session as _session
-from morsec.builder.components import AbstractComponent, _float, _plain, _vector
+from morsec.frontends.builder import session as _session
+from morsec.frontends.builder.components import AbstractComponent, _float, _plain, _vector
 
 
 class TimeStrategies:
@@ -273,8 +273,7 @@ class Environment(AbstractComponent):
             return
         self._created = True
         if self._session.standalone:
-            from morsec.builder.script import standalone_main
-            standalone_main(self._session)
+            _session.finish_standalone(self._session)
 
 
 def _create_at_exit(env: Environment) -> None:

@@ -19,8 +19,8 @@ import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
-from morsec.catalogue import Catalogue
-from morsec.component import KINDS, Device
+from morsec.component.catalogue import Catalogue
+from morsec.component.contract import KINDS, Device
 from morsec.scene.schema import GENERATED_MODULE, json_schema, scene_model
 
 GENERATED_PAGES = ("scene-format.md", "components.md")
@@ -341,7 +341,7 @@ def component_section(kind: str, cls, out_dir: Path | None) -> str:
         if services:
             facts.append("services " + ", ".join(f"`{s}`" for s in services))
     if out_dir is not None:
-        from morsec.gallery import page_path
+        from morsec.app.gallery import page_path
         facts.append(f"[gallery page]({page_path(kind, cls.id)})")
     readme = cls.folder / "README.md" if cls.folder is not None else None
     if out_dir is not None and readme is not None and readme.is_file():
@@ -389,7 +389,7 @@ def _short(value: Any) -> str:
 def generate(cat: Catalogue, out_dir: Path | None = None) -> dict[str, str]:
     """{page path: text} for every generated page; links to component READMEs are relative to `out_dir`.
     The component gallery (components/<kind>/<id>.md) is generated with them."""
-    from morsec.gallery import component_pages
+    from morsec.app.gallery import component_pages
     pages = {"scene-format.md": scene_format_page(cat), "components.md": components_page(cat, out_dir)}
     pages.update(component_pages(cat, lambda kind, cls: component_section(kind, cls, None)))
     return pages

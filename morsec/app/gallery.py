@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from morsec.catalogue import Catalogue
-from morsec.component import KINDS
+from morsec.component.catalogue import Catalogue
+from morsec.component.contract import KINDS
 
 PICTURE_SIZE = (400, 300)
 GALLERY = "components"
@@ -86,9 +86,9 @@ def scene_for(kind: str, cls, cat: Catalogue) -> str:
 def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None) -> list[Path]:
     import mujoco
 
-    from morsec.compiler.build import build_scene
-    from morsec.png import write_png
-    from morsec.render import open_renderer
+    from morsec.app.project import build_scene
+    from morsec.kits.png import write_png
+    from morsec.kits.render import open_renderer
     written = []
     with tempfile.TemporaryDirectory() as tmp:
         for kind in KINDS:

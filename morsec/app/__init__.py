@@ -1,0 +1,1 @@
+"""The application: path -> build -> run, convert, scaffolding, docs and gallery, the test harness."""

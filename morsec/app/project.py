@@ -1,0 +1,48 @@
+"""From what the user names (a scene file or a build folder) to a build folder: load, compile, write."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from morsec.compiler.build import MANIFEST, compile_scene, write_build
+from morsec.component.catalogue import Catalogue, load_catalogue
+from morsec.frontends.load import load_scene
+
+
+def default_build_dir(source: Path) -> Path:
+    return Path("build") / Path(source).stem
+
+
+def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
+    """Compile a scene file into `out_dir` (replaced only once the new build is complete)."""
+    source = Path(source)
+    cat = catalogue or load_catalogue(source.parent)
+    write_build(compile_scene(load_scene(source, cat), cat), Path(out_dir))
+    return Path(out_dir)
+
+
+def check_scene(source: Path) -> None:
+    """Everything `build` checks, nothing written."""
+    cat = load_catalogue(Path(source).parent)
+    compile_scene(load_scene(source, cat), cat)
+
+
+def prepare_build(source: Path, out: Path | None = None) -> tuple[Path, Catalogue]:
+    """A build folder for `source`: itself if it is one, else compiled (rewritten only when it changed)."""
+    source = Path(source)
+    if source.is_dir() and (source / MANIFEST).is_file():
+        return source, load_catalogue(Path.cwd())
+    cat = load_catalogue(source.parent)
+    files = compile_scene(load_scene(source, cat), cat)
+    out_dir = Path(out) if out else default_build_dir(source)
+    if not _same(out_dir, files):
+        write_build(files, out_dir)
+    return out_dir, cat
+
+
+def _same(out_dir: Path, files: dict[str, str]) -> bool:
+    manifest = out_dir / MANIFEST
+    try:
+        return manifest.read_text(encoding="utf-8") == files[MANIFEST]
+    except OSError:
+        return False

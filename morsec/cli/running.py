@@ -1,0 +1,71 @@
+"""Commands that run a scene: run, render."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+
+from morsec.cli.common import fail
+from morsec.constants import DEFAULT_BIND, SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.errors import MorsecError
+from morsec.runtime.view import ViewKind
+from morsec.scene.models import TimeStrategy
+
+
+def run(
+    scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
+    time_strategy: Annotated[Optional[TimeStrategy], typer.Option(
+        "--time-strategy", help="best_effort follows the wall clock; fixed_step runs as fast as possible "
+        "(default: the scene's)")] = None,
+    duration: Annotated[Optional[float], typer.Option(help="stop after this many simulated seconds")] = None,
+    time_scale: Annotated[Optional[float], typer.Option(help="simulated seconds per wall-clock second (best_effort)")] = None,
+    bind: Annotated[str, typer.Option(help="address the servers listen on")] = DEFAULT_BIND,
+    service_port: Annotated[Optional[int], typer.Option(
+        help=f"service port (default {SERVICE_PORT}, else the next {SERVICE_PORT_ATTEMPTS} ports)")] = None,
+    port_base: Annotated[Optional[int], typer.Option(
+        help=f"first stream port instead of {STREAM_PORT_BASE} (0: ports the OS picks; see the table or "
+        "get_stream_port)")] = None,
+    seed: Annotated[Optional[int], typer.Option(help="random seed for noise (default: the scene's)")] = None,
+    out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+    view: Annotated[Optional[ViewKind], typer.Option(
+        help="web: MuJoCo Studio's web viewer on --bind (prints the URL); native: mujoco.viewer (needs a display)")] = None,
+    view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
+) -> None:
+    """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
+    import logging
+
+    from morsec.app.project import prepare_build
+    from morsec.runtime.launch import run_simulation
+    from morsec.runtime.simulation import RunOptions
+    logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+    for name, value in (("--duration", duration), ("--time-scale", time_scale)):
+        if value is not None and not value > 0:
+            fail(MorsecError(f"{name} must be a positive number, got {value}"))
+    try:
+        build_dir, cat = prepare_build(scene, out)
+        options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
+                             port_base=port_base, seed=seed, view=view, view_port=view_port)
+        run_simulation(build_dir, cat, options, duration)
+    except MorsecError as err:
+        fail(err)
+    typer.echo("EXITING SIMULATION")
+
+
+def render(
+    scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="PNG file to write")] = Path("scene.png"),
+    camera: Annotated[Optional[str], typer.Option(help="camera name (default: the environment's camera)")] = None,
+    width: Annotated[int, typer.Option(min=16, max=1920, help="image width, pixels")] = 800,
+    height: Annotated[int, typer.Option(min=16, max=1080, help="image height, pixels")] = 600,
+) -> None:
+    """Render a picture of SCENE headless on the CPU (EGL, else OSMesa), from the environment's camera."""
+    from morsec.app.project import prepare_build
+    from morsec.kits.render import render_build
+    try:
+        build_dir, _ = prepare_build(scene, None)
+        path = render_build(build_dir, out, camera, width, height)
+    except MorsecError as err:
+        fail(err)
+    typer.echo(f"wrote {path}")

@@ -1,0 +1,66 @@
+"""Commands on scene files: build, check, schema, convert."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Annotated, Optional
+
+import typer
+from rich.progress import track
+
+from morsec.cli.common import err_console, fail
+from morsec.errors import MorsecError
+
+
+def build(
+    scene: Annotated[Path, typer.Argument(help="scene file: .yaml, .yml, .toml or a builder script .py")],
+    out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+) -> None:
+    """Compile SCENE into a build folder: scene.xml, robots/*.urdf, middleware.json, manifest.json."""
+    from morsec.app.project import build_scene, default_build_dir
+    try:
+        out_dir = build_scene(scene, out or default_build_dir(scene))
+    except MorsecError as err:
+        fail(err)
+    typer.echo(f"built {scene} -> {out_dir}")
+
+
+def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to validate")]) -> None:
+    """Validate scenes without writing anything (for CI): exit 0 when all are valid, 2 otherwise."""
+    from morsec.app.project import check_scene
+    failed = 0
+    many = len(scenes) > 3 and err_console.is_terminal
+    for path in track(scenes, description="checking", console=err_console, transient=True) if many else scenes:
+        try:
+            check_scene(path)
+        except MorsecError as err:
+            typer.echo(f"error: {err}", err=True)
+            failed += 1
+        else:
+            typer.echo(f"ok: {path}")
+    if failed:
+        raise typer.Exit(2)
+
+
+def schema() -> None:
+    """Print the JSON Schema of a scene, with every catalogue component's own properties."""
+    from morsec.component.catalogue import load_catalogue
+    from morsec.scene.schema import json_schema_text
+    try:
+        sys.stdout.write(json_schema_text(load_catalogue()))
+    except MorsecError as err:
+        fail(err)
+
+
+def convert(
+    scene: Annotated[Path, typer.Argument(help="scene to convert: a builder script .py, .yaml, .yml or .toml")],
+    out: Annotated[Path, typer.Option("-o", "--out", help="file to write: .yaml, .yml or .toml")],
+) -> None:
+    """Write SCENE in another form (builder script -> YAML/TOML, YAML <-> TOML); the result builds the same."""
+    from morsec.app.convert import convert_scene
+    try:
+        convert_scene(scene, out)
+    except MorsecError as err:
+        fail(err)
+    typer.echo(f"converted {scene} -> {out}")

@@ -1,0 +1,13 @@
+"""The component contract (what a component folder's `component.py` declares) and the catalogue that
+discovers component folders. Component authors import from here:
+
+    from morsec.component import ComponentProperties, DataField, Level, Sensor, service
+"""
+
+from morsec.component.catalogue import component_class
+from morsec.component.contract import (Actuator, Component, ComponentProperties, DataField, Device, Environment,
+                                       Level, Prop, Robot, RobotProperties, Sensor)
+from morsec.component.services import ServiceInfo, async_service, service
+
+__all__ = ["Actuator", "Component", "ComponentProperties", "DataField", "Device", "Environment", "Level", "Prop",
+           "Robot", "RobotProperties", "Sensor", "ServiceInfo", "async_service", "component_class", "service"]

@@ -1,0 +1,51 @@
+"""Services, as components declare them and middlewares carry them: the decorators, the request a
+middleware hands to the runtime, and MORSE's answer statuses."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, Protocol
+
+SUCCESS, FAILED, PREEMPTED = "SUCCESS", "FAILED", "PREEMPTED"
+
+
+@dataclass
+class Request:
+    id: str
+    component: str
+    service: str
+    args: list
+    reply: Callable[[str, str, Any], None]  # (id, status, result)
+    client: Any = None  # the connection it came on, for `cancel`
+    info: ServiceInfo | None = None
+
+
+class RequestHandler(Protocol):
+    """What a middleware hands requests to (the runtime's RequestManager)."""
+
+    def handle(self, request: Request) -> None: ...
+    def cancel(self, client: Any, request_id: str) -> None: ...
+    def drop_client(self, client: Any) -> None: ...
+
+
+@dataclass(frozen=True)
+class ServiceInfo:
+    name: str
+    asynchronous: bool
+    interruptible: bool | None  # None: no policy, a second call fails
+
+
+def service(fn: Callable | None = None, *, name: str | None = None):
+    """A synchronous service: its return value is the answer."""
+    def mark(f):
+        f._morsec_service = ServiceInfo(name or f.__name__, False, None)
+        return f
+    return mark(fn) if fn else mark
+
+
+def async_service(fn: Callable | None = None, *, name: str | None = None, interruptible: bool | None = None):
+    """An asynchronous service: it starts work and later calls `self.completed(status, result)`."""
+    def mark(f):
+        f._morsec_service = ServiceInfo(name or f.__name__, True, interruptible)
+        return f
+    return mark(fn) if fn else mark
