@@ -99,7 +99,7 @@ def run_morsec(build: Path, catalogue, duration: float, profile: cProfile.Profil
     """Wall seconds of Simulation.run(duration) (construction excluded) and the frames it ran.
     components=False: every component deactivated (`simulation deactivate`), to see the loop's own cost."""
     options = RunOptions(strategy="fixed_step", service_port=0, port_base=free_block(10))
-    sim = Simulation(build, catalogue, options)
+    sim = Simulation(build, options)
     for comp in sim.components:
         comp.active = components
     start = time.perf_counter()

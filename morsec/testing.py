@@ -117,7 +117,7 @@ def simulate(scene: str | dict, tmp_path: Path, *, project: Path | None = None, 
     cat = load_catalogue(Path(project) if project is not None else Path.cwd())
     build_dir = build_scene(source, tmp_path / f"build-{name}", cat)
     options = RunOptions(strategy="fixed_step", seed=seed, output_dir=tmp_path, service_port=0, port_base=0)
-    sim = Simulation(build_dir, cat, options)
+    sim = Simulation(build_dir, options)
     try:
         yield Harness(sim)
     finally:

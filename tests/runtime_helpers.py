@@ -238,7 +238,10 @@ class Morsec:
         self.port_base = port_base if port_base is not None else free_ports(20)
         self.cwd = Path(cwd) if cwd else self.workdir
         self.build = Path(build) if build else self.workdir / f"build-{self.scene_path.stem}"
-        if prebuild:
+        if self.scene_path.is_dir():  # a build folder: run it as it is
+            self.build = self.scene_path
+            command = [str(MORSEC), "run", str(self.build)]
+        elif prebuild:
             build_folder(self.scene_path, self.build)
             command = [str(MORSEC), "run", str(self.build)]
         else:

@@ -15,7 +15,7 @@ from morsec.cli.standalone import morsec_args
 from morsec.frontends.builder.script import record_script
 from morsec.component.catalogue import load_catalogue
 from morsec.app.project import build_scene
-from morsec.compiler.build import component_entries
+from morsec.scene.walk import walk_components
 from morsec.errors import MorsecError, SceneError
 from morsec.frontends import load_scene
 
@@ -47,7 +47,7 @@ def load(path: Path):
 
 
 def fqns(scene, path: Path) -> list[str]:
-    return [c["fqn"] for c in component_entries(scene, load_catalogue(path.parent))]
+    return [placed.fqn for placed in walk_components(scene)]
 
 
 def cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:

@@ -228,7 +228,7 @@ def test_build_assigns_ports_from_60000(sims):
     socket_streams = [s for s in middleware["streams"] if s["middleware"] == "socket"]
     assert [s["component"] for s in socket_streams] == sorted(s["component"] for s in socket_streams)
     assert [s["port"] for s in socket_streams if not s["explicit_port"]] == [60000, 60001, 60002]
-    assert middleware["service_port"] == 4000
+    assert middleware["services"]["socket"]["port"] == 4000
 
 
 def test_service_port_falls_back_when_4000_is_busy(sims):

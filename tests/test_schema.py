@@ -116,3 +116,26 @@ def test_robots_and_components_are_unions_discriminated_on_type():
         levels = [level.name for level in cls.levels]
         level_schema = json.dumps(variant["properties"]["level"])
         assert all(f'"{name}"' in level_schema for name in levels), cid
+
+
+MANIFEST_SCHEMA = ROOT / "schemas" / "manifest.schema.json"
+
+
+def test_checked_in_manifest_schema_is_fresh():
+    from morsec.scene.manifest import manifest_schema_text
+    checked_in = MANIFEST_SCHEMA.read_text(encoding="utf-8") if MANIFEST_SCHEMA.is_file() else ""
+    assert checked_in == manifest_schema_text(), ("schemas/manifest.schema.json is stale: run "
+                                                  "`morsec schema --manifest > schemas/manifest.schema.json`")
+
+
+@pytest.mark.parametrize("scene", [ROOT / "scenes" / "tutorial.yaml", ROOT / "scenes" / "rover_laser.yaml"],
+                         ids=lambda p: p.name)
+def test_built_manifests_follow_the_manifest_schema(scene, tmp_path):
+    from morsec.app.project import build_scene
+    built = build_scene(scene, tmp_path / "build")
+    manifest = json.loads((built / "manifest.json").read_text(encoding="utf-8"))
+    schema = json.loads(MANIFEST_SCHEMA.read_text(encoding="utf-8"))
+    jsonschema.Draft202012Validator(schema).validate(manifest)
+    broken = dict(manifest, streams=[{"component": "robot.pose"}])  # a stream without direction nor endpoint
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.Draft202012Validator(schema).validate(broken)

@@ -27,17 +27,17 @@ def check_scene(source: Path) -> None:
     compile_scene(load_scene(source, cat), cat)
 
 
-def prepare_build(source: Path, out: Path | None = None) -> tuple[Path, Catalogue]:
+def prepare_build(source: Path, out: Path | None = None) -> Path:
     """A build folder for `source`: itself if it is one, else compiled (rewritten only when it changed)."""
     source = Path(source)
     if source.is_dir() and (source / MANIFEST).is_file():
-        return source, load_catalogue(Path.cwd())
+        return source
     cat = load_catalogue(source.parent)
     files = compile_scene(load_scene(source, cat), cat)
     out_dir = Path(out) if out else default_build_dir(source)
     if not _same(out_dir, files):
         write_build(files, out_dir)
-    return out_dir, cat
+    return out_dir
 
 
 def _same(out_dir: Path, files: dict[str, str]) -> bool:

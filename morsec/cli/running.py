@@ -44,10 +44,10 @@ def run(
         if value is not None and not value > 0:
             fail(MorsecError(f"{name} must be a positive number, got {value}"))
     try:
-        build_dir, cat = prepare_build(scene, out)
+        build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port)
-        run_simulation(build_dir, cat, options, duration)
+        run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)
     typer.echo("EXITING SIMULATION")
@@ -64,7 +64,7 @@ def render(
     from morsec.app.project import prepare_build
     from morsec.kits.render import render_build
     try:
-        build_dir, _ = prepare_build(scene, None)
+        build_dir = prepare_build(scene, None)
         path = render_build(build_dir, out, camera, width, height)
     except MorsecError as err:
         fail(err)

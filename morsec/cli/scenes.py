@@ -43,12 +43,15 @@ def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to vali
         raise typer.Exit(2)
 
 
-def schema() -> None:
-    """Print the JSON Schema of a scene, with every catalogue component's own properties."""
+def schema(
+    manifest: Annotated[bool, typer.Option("--manifest", help="the schema of a build's manifest.json instead")] = False,
+) -> None:
+    """Print the JSON Schema of a scene, with every catalogue component's own properties (or of manifest.json)."""
     from morsec.component.catalogue import load_catalogue
+    from morsec.scene.manifest import manifest_schema_text
     from morsec.scene.schema import json_schema_text
     try:
-        sys.stdout.write(json_schema_text(load_catalogue()))
+        sys.stdout.write(manifest_schema_text() if manifest else json_schema_text(load_catalogue()))
     except MorsecError as err:
         fail(err)
 

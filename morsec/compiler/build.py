@@ -19,17 +19,18 @@ from xml.sax.saxutils import escape as xml_escape
 import mujoco
 
 from morsec import __version__
-from morsec.component.catalogue import Catalogue, level_class
 from morsec.compiler.assets import Assets
-from morsec.compiler.middleware import middleware_config
+from morsec.compiler.middleware import assign_services, assign_streams, middleware_view
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
+from morsec.component.catalogue import Catalogue, is_builtin, level_class
 from morsec.errors import SceneError, yaml_path
-from morsec.scene.naming import join
+from morsec.modifiers.registry import modifier_class
+from morsec.scene.manifest import (BUILTIN_ROOT, FORMAT_VERSION, MANIFEST, ComponentEntry, ComponentRef, Loop,
+                                   Manifest, ModifierEntry, RobotEntry)
+from morsec.scene.walk import walk_components
 
-MANIFEST = "manifest.json"
 _NAME_PLACEHOLDER = "morsec__robot__name__placeholder"
-FORMAT_VERSION = 1
 
 
 def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
@@ -59,66 +60,66 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
             raise _at_scene(err, scene, ("robots", r, "type")) from None
         path = f"robots/{robot.name}.urdf"
         files[path] = urdf
-        robots.append({"name": robot.name, "type": robot.type, "class": class_ref(cls), "urdf": path,
-                       "free": not (robot.physics_type == "static" or cls.static)})
+        robots.append(RobotEntry(name=robot.name, type=robot.type, component=component_ref(cls),
+                                 builder_name=cls.builder_name or robot.type, urdf=path,
+                                 free=not (robot.physics_type == "static" or cls.static),
+                                 properties=robot.properties.model_dump(mode="json")))
     xml = render_scene(scene, cat, trees, loop_frequency, assets)
     check_mjcf(xml, scene, assets.files)
     files.update(assets.files)
     files["scene.xml"] = xml
-    files["middleware.json"] = dump(middleware_config(scene, components))
+    env = scene.environment
+    streams = assign_streams([(c.fqn, cat.devices()[c.type].direction, specs) for c, specs in components])
+    services = assign_services({c.fqn: c.services for c, _ in components}, env.services)
+    managers = {name: spec.model_dump(mode="json") for name, spec in sorted(env.stream_managers.items())}
+    files["middleware.json"] = dump(middleware_view(streams, services, managers))
     ir = scene.model_dump(mode="json")
-    manifest = {
-        "format": FORMAT_VERSION,
-        "morsec": __version__,
-        "mujoco": mujoco.__version__,
-        "loop": {"frequency": loop_frequency, "physics_substeps": scene.environment.time.physics_substeps,
-                 "timestep": 1.0 / (loop_frequency * scene.environment.time.physics_substeps)},
-        "scene": ir,
-        "scene_sha256": sha256(dump(ir)),
-        "robots": robots,
-        "components": components,
-        "files": {name: sha256(text) for name, text in sorted(files.items())},
-    }
-    files[MANIFEST] = dump(manifest)
+    manifest = Manifest(
+        format=FORMAT_VERSION, morsec=__version__, mujoco=mujoco.__version__,
+        loop=Loop(frequency=loop_frequency, physics_substeps=env.time.physics_substeps,
+                  timestep=1.0 / (loop_frequency * env.time.physics_substeps)),
+        scene=ir, scene_sha256=sha256(dump(ir)), robots=robots, components=[c for c, _ in components],
+        streams=streams, services=services, stream_managers=managers,
+        files={name: sha256(text) for name, text in sorted(files.items())},
+    )
+    files[MANIFEST] = dump(manifest.model_dump(mode="json"))
     return files
 
 
-def component_entries(scene, cat: Catalogue) -> list[dict]:
+def component_entries(scene, cat: Catalogue) -> list[tuple[ComponentEntry, list]]:
+    """Each sensor and actuator of the scene, resolved, with the stream specs the scene gave it."""
     devices = cat.devices()
-    entries: list[dict] = []
-
-    def visit(comp, parent_fqn: str, robot: str, path: tuple):
+    env_properties = scene.environment.properties
+    entries: list[tuple[ComponentEntry, list]] = []
+    for robot, comp, fqn, parent, path in walk_components(scene):
         cls = devices[comp.type]
-        fqn = join(parent_fqn, comp.name)
         impl = level_class(cls, comp.level)
-        entries.append({
-            "fqn": fqn, "robot": robot, "parent": parent_fqn, "type": comp.type, "kind": cls.kind,
-            "class": class_ref(cls), "level_class": class_ref(impl, cls), "level": comp.level,
-            "frequency": comp.frequency, "properties": comp.properties.model_dump(mode="json"),
-            "data_fields": [f.name for f in impl.fields_at(comp.level)],
-            "services": comp.services, "service_names": sorted(impl.services()),
-            "streams": [s.model_dump(mode="json") for s in comp.streams],
-            "modifiers": [m.model_dump(mode="json") for m in comp.modifiers],
-            "path": list(path),
-        })
-        for i, child in enumerate(comp.components):
-            visit(child, fqn, robot, path + ("components", i))
-
-    for r, robot in enumerate(scene.robots):
-        for i, comp in enumerate(robot.components):
-            visit(comp, robot.name, robot.name, ("robots", r, "components", i))
+        modifiers = []
+        for spec in comp.modifiers:
+            mod_cls = modifier_class(spec.name, cls)
+            params = mod_cls.resolve_params(dict(spec.model_extra or {}), env_properties)
+            modifiers.append(ModifierEntry(name=spec.name, cls=f"{mod_cls.__module__}:{mod_cls.__qualname__}",
+                                           params=params.model_dump(mode="json")))
+        entries.append((ComponentEntry(
+            fqn=fqn, robot=robot.name, parent=parent, type=comp.type, kind=cls.kind, component=component_ref(cls),
+            level_class=impl.__name__, level=comp.level, frequency=comp.frequency,
+            properties=comp.properties.model_dump(mode="json"),
+            data_fields=[f.name for f in impl.fields_at(comp.level)],
+            services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, path=list(path),
+        ), comp.streams))
     return entries
 
 
-def class_ref(cls, owner=None) -> str:
-    owner = owner or cls
-    return f"{owner.kind}s/{owner.id}:{cls.__name__}"
+def component_ref(cls) -> ComponentRef:
+    root = Path(cls.folder).parent.parent
+    return ComponentRef(root=BUILTIN_ROOT if is_builtin(cls) else str(root.resolve()), kind=f"{cls.kind}s",
+                        id=cls.id, name=cls.__name__)
 
 
-def loop_rate(scene, components: list[dict]) -> float:
+def loop_rate(scene, components: list[tuple[ComponentEntry, list]]) -> float:
     """The main loop's frequency; with auto-tune (MORSE's default) raised to the fastest component."""
     time = scene.environment.time
-    fastest = max((c["frequency"] for c in components), default=0.0)
+    fastest = max((c.frequency for c, _ in components), default=0.0)
     return max(time.frequency, fastest) if time.auto_tune else time.frequency
 
 
@@ -171,18 +172,9 @@ def _scene_path(scene, body: str) -> tuple | None:
     for r, robot in enumerate(scene.robots):
         if body == robot.name or body.startswith(robot.name + "/"):
             return ("robots", r)
-        def visit(comps, prefix, path):
-            for i, c in enumerate(comps):
-                fqn = join(prefix, c.name)
-                if body == fqn:
-                    return path + ("components", i)
-                found = visit(c.components, fqn, path + ("components", i))
-                if found:
-                    return found
-            return None
-        found = visit(robot.components, robot.name, ("robots", r))
-        if found:
-            return found
+    for placed in walk_components(scene):
+        if body == placed.fqn:
+            return placed.path
     for i, obj in enumerate(scene.objects):
         if body == obj.name:
             return ("objects", i)

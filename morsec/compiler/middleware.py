@@ -1,39 +1,48 @@
-"""middleware.json: every stream and service of the scene, with its assigned port or file."""
+"""Streams and services of the scene, each given its endpoint by its middleware (ports, files): decided here,
+once, recorded in the manifest; `middleware.json` is the same decisions as a middleware tool reads them."""
 
 from __future__ import annotations
 
-from morsec.constants import SERVICE_PORT, STREAM_PORT_BASE
+from morsec.middleware.base import StreamRequest
+from morsec.middleware.registry import middleware, middlewares
+from morsec.scene.manifest import ServiceEntry, StreamEntry
+
+# the stream options that are not an endpoint's (every middleware accepts them)
+_COMMON = {"middleware", "direction", "topic", "frame_id", "method", "path", "classpath"}
 
 
-def middleware_config(scene, components: list[dict]) -> dict:
-    """`components`: the manifest's component entries (fqn, kind, streams, services), any order."""
-    streams = []
-    explicit = {s["port"] for c in components for s in c["streams"] if s["middleware"] == "socket" and s["port"]}
-    next_port = STREAM_PORT_BASE
-    for comp in sorted(components, key=lambda c: c["fqn"]):
-        for stream in comp["streams"]:
-            entry = {"component": comp["fqn"], "direction": stream["direction"], "middleware": stream["middleware"]}
-            if stream["middleware"] == "socket":
-                entry["serializer"] = "json"
-                if stream["port"]:
-                    entry.update(port=stream["port"], explicit_port=True)
-                else:
-                    while next_port in explicit:
-                        next_port += 1
-                    entry.update(port=next_port, explicit_port=False)
-                    next_port += 1
-            elif stream["middleware"] == "text":
-                fmt = stream.get("format") or "text"
-                entry["serializer"] = fmt
-                entry["file"] = stream.get("file") or f"{comp['fqn']}.{'csv' if fmt == 'csv' else 'txt'}"
-            streams.append(entry)
-    services = {c["fqn"]: c["services"] for c in sorted(components, key=lambda c: c["fqn"]) if c["services"]}
-    env = scene.environment
-    managers = {name: spec.model_dump(mode="json") for name, spec in sorted(env.stream_managers.items())}
+def assign_streams(components: list[tuple[str, str, list]]) -> list[StreamEntry]:
+    """`components`: (fqn, default direction, the IR's stream specs) of every component."""
+    requests: dict[str, list[StreamRequest]] = {}
+    for fqn, direction, specs in sorted(components, key=lambda c: c[0]):
+        for spec in specs:
+            options = {k: v for k, v in spec.model_dump(exclude_none=True).items() if k not in _COMMON}
+            requests.setdefault(spec.middleware, []).append(
+                StreamRequest(fqn, spec.direction or direction, options))
+    entries = []
+    for name, streams in requests.items():
+        for stream, endpoint in zip(streams, middleware(name).assign(streams)):
+            entries.append(StreamEntry(component=stream.component, direction=stream.direction, middleware=name,
+                                       endpoint=endpoint))
+    return sorted(entries, key=lambda e: (e.component, e.middleware))
+
+
+def assign_services(exposed: dict[str, list[str]], supervision: list[str]) -> list[ServiceEntry]:
+    """`exposed`: component fqn -> middlewares its services go on; `supervision`: the middlewares serving the
+    simulation's own services besides those that always serve them."""
+    entries = []
+    for name, cls in middlewares().items():
+        components = sorted(fqn for fqn, names in exposed.items() if name in names)
+        if cls.carries_services and (components or cls.always_serves or name in supervision):
+            entries.append(ServiceEntry(middleware=name, endpoint=cls.services_endpoint(), components=components))
+    return entries
+
+
+def middleware_view(streams: list[StreamEntry], services: list[ServiceEntry], managers: dict) -> dict:
+    """middleware.json: every endpoint, per middleware, for the tools that connect to them."""
     return {
-        "service_port": SERVICE_PORT,
-        "supervision": sorted(set(["socket", *env.services])),
-        "services": services,
-        "streams": streams,
+        "streams": [{"component": s.component, "direction": s.direction, "middleware": s.middleware, **s.endpoint}
+                    for s in streams],
+        "services": {s.middleware: {**s.endpoint, "components": s.components} for s in services},
         "stream_managers": managers,
     }

@@ -17,13 +17,14 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Literal, get_args, get_origin
+from typing import Any, Literal, get_args, get_origin
 
 from morsec.component.contract import KINDS, Component, ComponentProperties, Device
 from morsec.errors import MorsecError, did_you_mean
 from morsec.resources import data_dir
 
 PROJECT_FILE = "morsec.toml"
+BUILTIN_ROOT = "morsec"  # how a build names the folder of the built-in components
 ENV_VAR = "MORSEC_COMPONENTS"
 ENTRY_POINT_GROUP = "morsec.components"
 BASIC_TYPES = (bool, int, float, str)
@@ -166,6 +167,32 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     if cls.builder_name is None:
         cls.builder_name = camel_case(cid)
     check_properties(cls.Properties, folder)
+    return cls
+
+
+def load_class(ref: Any, name: str | None = None) -> type:
+    """A class a build recorded: `"module:Class"`, or a component reference (root, kind, id, name: see
+    morsec.scene.manifest.ComponentRef) whose folder is loaded if it is not yet; `name` picks another class
+    of the same component.py (a level's)."""
+    if isinstance(ref, str):
+        module_name, _, qualname = ref.partition(":")
+        try:
+            target: Any = importlib.import_module(module_name)
+            for part in qualname.split("."):
+                target = getattr(target, part)
+        except (ImportError, AttributeError) as err:
+            raise MorsecError(f"cannot load {ref}: {err}") from None
+        return target
+    root = data_dir("components") if ref.root == BUILTIN_ROOT else Path(ref.root)
+    folder = root / ref.kind / ref.id
+    if not (folder / "component.py").is_file():
+        raise MorsecError(f"component {ref.kind}/{ref.id} is no longer at {folder}: rebuild the scene")
+    module = sys.modules.get(_module_name(folder, ref.kind, ref.id))
+    if getattr(getattr(module, "COMPONENT", None), "id", None) != ref.id:
+        module = sys.modules[load_component(folder, ref.kind, ref.id).__module__]
+    cls = getattr(module, name or ref.name, None)
+    if not isinstance(cls, type):
+        raise MorsecError(f"{folder / 'component.py'} has no class {name or ref.name}: rebuild the scene")
     return cls
 
 

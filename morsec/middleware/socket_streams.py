@@ -84,7 +84,8 @@ class SocketStream(Server):
     def listening(self) -> bool:
         return bool(self.clients)
 
-    def publish(self, line: bytes) -> None:
+    def publish(self, message: dict) -> None:
+        line = encode(message)
         for conn in list(self.clients):
             if not conn.send(line, droppable=True):
                 self.drop(conn)

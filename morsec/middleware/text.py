@@ -6,8 +6,44 @@ from __future__ import annotations
 import csv
 import json
 from pathlib import Path
+from typing import Any
 
+from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.socket_streams import _plain
+
+
+class Text(Middleware):
+    name = "text"
+    description = "each message of a sensor appended to a file: key = value blocks, or CSV"
+    stream_options = ("file", "format")
+
+    @classmethod
+    def assign(cls, streams: list[StreamRequest]) -> list[dict[str, Any]]:
+        endpoints = []
+        for stream in streams:
+            fmt = stream.options.get("format") or "text"
+            default = f"{stream.component}.{'csv' if fmt == 'csv' else 'txt'}"
+            endpoints.append({"file": stream.options.get("file") or default, "format": fmt})
+        return endpoints
+
+    def __init__(self, context, settings):
+        super().__init__(context, settings)
+        self.streams: list[TextStream] = []
+
+    def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> "TextStream":
+        if direction != "OUT":
+            raise ValueError(f"{component}: the text middleware only writes sensor output")
+        stream = TextStream(component, Path(self.context.output_dir) / endpoint["file"], endpoint["format"])
+        self.streams.append(stream)
+        return stream
+
+    def describe(self) -> list[tuple[str, str, str]]:
+        return [(s.component, "OUT", str(s.path)) for s in self.streams]
+
+    def close(self) -> None:
+        for stream in self.streams:
+            stream.close()
+        self.streams = []
 
 
 class TextStream:
@@ -22,7 +58,7 @@ class TextStream:
 
     listening = True
 
-    def write(self, local_data: dict) -> None:
+    def publish(self, local_data: dict) -> None:
         if self.csv is not None:
             if self.header is None:
                 self.header = list(local_data)
@@ -36,7 +72,8 @@ class TextStream:
         self.file.flush()
 
     def close(self) -> None:
-        self.file.close()
+        if not self.file.closed:
+            self.file.close()
 
 
 def _cell(value) -> str:

@@ -16,10 +16,15 @@ from morsec.component.services import FAILED, PREEMPTED, SUCCESS, Request, Servi
 
 log = logging.getLogger("morsec.services")
 
+
 @dataclass
 class Exposed:
     obj: Any
     services: dict[str, ServiceInfo] = field(default_factory=dict)
+    owners: dict[str, Any] = field(default_factory=dict)  # services another object adds (a middleware's)
+
+    def owner(self, service: str) -> Any:
+        return self.owners.get(service, self.obj)
 
 
 class RequestManager:
@@ -30,6 +35,14 @@ class RequestManager:
 
     def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
         self.exposed[name] = Exposed(obj, dict(services))
+
+    def expose_more(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
+        """Services of `obj` added to the already exposed `name` (the socket middleware's stream ports on
+        `simulation`, as MORSE's socket datastream manager added them)."""
+        exposed = self.exposed[name]
+        for service_name, info in services.items():
+            exposed.services[service_name] = info
+            exposed.owners[service_name] = obj
 
     def service_names(self, name: str) -> list[str]:
         exposed = self.exposed.get(name)
@@ -42,7 +55,8 @@ class RequestManager:
             request.reply(request.id, FAILED, f"The request {request.service!r} of component {request.component!r} "
                           "has not been registered in Socket service manager")
             return
-        method = getattr(exposed.obj, _attribute(exposed.obj, info))
+        owner = exposed.owner(request.service)
+        method = getattr(owner, _attribute(owner, info))
         try:
             inspect.signature(method).bind(*request.args)
         except TypeError as err:

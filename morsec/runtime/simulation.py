@@ -16,18 +16,14 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from morsec.component.catalogue import Catalogue, level_class
-from morsec.constants import SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
-from morsec.errors import RuntimeFailure
+from morsec.component.catalogue import load_class
+from morsec.errors import MorsecError, RuntimeFailure
+from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
-from morsec.middleware.socket_services import ServiceServer
-from morsec.middleware.socket_streams import SocketStream, encode
-from morsec.middleware.sync import SyncServer
-from morsec.middleware.text import TextStream
-from morsec.modifiers.registry import modifier_class
+from morsec.middleware.registry import middleware
 from morsec.runtime.clock import Clock, Periodic
 from morsec.runtime.robot import RobotHandle, free_joint, place
-from morsec.scene.models import StreamSpec
+from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 from morsec.runtime.requests import RequestManager
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 
@@ -69,10 +65,11 @@ class ComponentRuntime:
     kind: str
     instance: Any
     schedule: Periodic
-    stream_specs: list[StreamSpec]
     defaults: list = field(default_factory=list)  # (name, default) of the data fields, for actuator input
-    socket_streams: list[SocketStream] = field(default_factory=list)
-    text_streams: list[TextStream] = field(default_factory=list)
+    streams: list = field(default_factory=list)  # (middleware, direction), as `simulation details` reports them
+    services: list = field(default_factory=list)  # the middlewares its services are exposed on
+    in_streams: list = field(default_factory=list)
+    out_streams: list = field(default_factory=list)
     modifiers: list = field(default_factory=list)
     active: bool = True
     stopped: bool = False
@@ -118,22 +115,20 @@ class Zone:
 
 
 class Simulation:
-    def __init__(self, build_dir: Path, catalogue: Catalogue, options: RunOptions | None = None):
+    def __init__(self, build_dir: Path, options: RunOptions | None = None):
         self.options = options or RunOptions()
         build_dir = Path(build_dir)
+        manifest = load_manifest(build_dir)
         try:
-            manifest = json.loads((build_dir / "manifest.json").read_text())
-            middleware = json.loads((build_dir / "middleware.json").read_text())
             self.model = mujoco.MjModel.from_xml_path(str(build_dir / "scene.xml"))
         except (OSError, ValueError) as err:
             raise RuntimeFailure(f"{build_dir}: not a usable build folder: {err}") from None
         self.data = mujoco.MjData(self.model)
         self.manifest = manifest
-        self.scene = manifest["scene"]
+        self.scene = manifest.scene
         env = self.scene["environment"]
-        loop = manifest["loop"]
-        self.substeps = int(loop["physics_substeps"])
-        self.clock = Clock(float(loop["frequency"]), self.options.strategy or env["time"]["strategy"],
+        self.substeps = manifest.loop.physics_substeps
+        self.clock = Clock(manifest.loop.frequency, self.options.strategy or env["time"]["strategy"],
                            self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
@@ -143,10 +138,13 @@ class Simulation:
         self.poller = Poller()
         mujoco.mj_forward(self.model, self.data)
 
-        self.robots = [self._robot(r, catalogue) for r in manifest["robots"]]
-        handles = {r.name: r.handle for r in self.robots}
-        self.components: list[ComponentRuntime] = [self._component(c, catalogue, handles)
-                                                   for c in manifest["components"]]
+        try:
+            self.robots = [self._robot(r) for r in manifest.robots]
+            handles = {r.name: r.handle for r in self.robots}
+            self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
+        except MorsecError as err:
+            self.poller.close()
+            raise RuntimeFailure(f"{build_dir}: {err}") from None
         self.by_name = {c.fqn: c for c in self.components}
         self.actuators = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "actuator"]
         # sensors that gather others' data (tick_last: compound) tick after them in each frame
@@ -168,7 +166,8 @@ class Simulation:
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
             self.requests.expose(name, obj, _services_of(obj))
-        self._bind(middleware)
+        self.middlewares: dict[str, Middleware] = {}
+        self._open_middlewares(manifest)
         self.view = None
         if self.options.view:
             from morsec.runtime.view import open_view
@@ -180,70 +179,68 @@ class Simulation:
                 raise
 
     # ---------------------------------------------------------------- construction
-    def _robot(self, entry: dict, cat: Catalogue) -> RobotInfo:
-        ir = next(r for r in self.scene["robots"] if r["name"] == entry["name"])
-        cls = cat.get("robots", entry["type"])
-        handle = RobotHandle(self, entry["name"], cls.Properties.model_validate(ir["properties"]))
-        return RobotInfo(entry["name"], cls.builder_name or entry["type"], handle)
+    def _robot(self, entry: RobotEntry) -> RobotInfo:
+        cls = load_class(entry.component)
+        handle = RobotHandle(self, entry.name, cls.Properties.model_validate(entry.properties))
+        return RobotInfo(entry.name, entry.builder_name, handle)
 
-    def _component(self, entry: dict, cat: Catalogue, robots: dict[str, RobotHandle]) -> ComponentRuntime:
-        cls = cat.devices().get(entry["type"])
-        if cls is None:
-            raise RuntimeFailure(f"component type {entry['type']!r} of {entry['fqn']} is not in the catalogue")
-        impl = level_class(cls, entry["level"])
-        body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, entry["fqn"])
+    def _component(self, entry: ComponentEntry, robots: dict[str, RobotHandle]) -> ComponentRuntime:
+        cls = load_class(entry.component)
+        impl = load_class(entry.component, entry.level_class)
+        body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, entry.fqn)
         if body < 0:
-            raise RuntimeFailure(f"scene.xml has no body for component {entry['fqn']}: rebuild the scene")
-        configuration = {k: entry[k] for k in ("level", "frequency", "streams", "services", "modifiers")}
-        context = ComponentContext(self, entry["fqn"], body, robots[entry["robot"]],
-                                   cls.Properties.model_validate(entry["properties"]), entry["level"],
-                                   float(entry["frequency"]), configuration)
+            raise RuntimeFailure(f"scene.xml has no body for component {entry.fqn}: rebuild the scene")
+        streams = [s for s in self.manifest.streams if s.component == entry.fqn]
+        configuration = {"level": entry.level, "frequency": entry.frequency, "services": entry.services,
+                         "streams": [{"middleware": s.middleware, "direction": s.direction, **s.endpoint}
+                                     for s in streams],
+                         "modifiers": [{"name": m.name, **m.params} for m in entry.modifiers]}
+        context = ComponentContext(self, entry.fqn, body, robots[entry.robot],
+                                   cls.Properties.model_validate(entry.properties), entry.level,
+                                   entry.frequency, configuration)
         instance = impl(context)
-        env_properties = self.scene["environment"]["properties"]
         modifiers = []
-        for k, spec in enumerate(entry["modifiers"]):
-            mod_cls = modifier_class(spec["name"], cls)
-            params = mod_cls.resolve_params({key: v for key, v in spec.items() if key != "name"}, env_properties)
-            modifiers.append(mod_cls(params, self.rng_for(entry["fqn"], k, spec["name"]), self))
+        for k, spec in enumerate(entry.modifiers):
+            mod_cls = load_class(spec.cls)
+            modifiers.append(mod_cls(mod_cls.Params.model_validate(spec.params),
+                                     self.rng_for(entry.fqn, k, spec.name), self))
         return ComponentRuntime(
-            fqn=entry["fqn"], parent=entry["parent"], robot=entry["robot"], kind=entry["kind"], instance=instance,
-            schedule=Periodic(float(entry["frequency"]), self.clock.dt),
-            stream_specs=[StreamSpec.model_validate(s) for s in entry["streams"]],
-            defaults=[(f.name, f.default) for f in impl.fields_at(entry["level"])],
+            fqn=entry.fqn, parent=entry.parent, robot=entry.robot, kind=entry.kind, instance=instance,
+            schedule=Periodic(entry.frequency, self.clock.dt),
+            defaults=[(f.name, f.default) for f in impl.fields_at(entry.level)],
+            streams=[(s.middleware, s.direction) for s in streams],
+            services=list(entry.services),
             modifiers=modifiers,
         )
 
-    def _bind(self, middleware: dict) -> None:
+    def _open_middlewares(self, manifest: Manifest) -> None:
         opts = self.options
-        self.socket_ports: dict[str, int] = {}
+        context = RunContext(self.poller, self.requests, opts.bind, Path(opts.output_dir), opts.port_base,
+                             opts.service_port)
+        used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services})
         try:
-            for stream in middleware["streams"]:
-                comp = self.by_name[stream["component"]]
-                if stream["middleware"] == "socket":
-                    port = stream["port"]
-                    if opts.port_base == 0:  # every stream on a port the OS picks (tests, throwaway runs)
-                        port = 0
-                    elif opts.port_base is not None and not stream["explicit_port"]:
-                        port = opts.port_base + (port - STREAM_PORT_BASE)
-                    server = SocketStream(self.poller, comp.fqn, stream["direction"], opts.bind, port, hint_only=True)
-                    comp.socket_streams.append(server)
-                    self.socket_ports[comp.fqn] = server.port
-                elif stream["middleware"] == "text":
-                    if stream["direction"] == "OUT":
-                        comp.text_streams.append(TextStream(comp.fqn, Path(opts.output_dir) / stream["file"],
-                                                            stream["serializer"]))
-            for fqn, middlewares in middleware["services"].items():
-                if "socket" in middlewares:
+            for name in used:
+                self.middlewares[name] = middleware(name)(context, manifest.stream_managers.get(name, {}))
+            for stream in manifest.streams:
+                comp = self.by_name[stream.component]
+                opened = self.middlewares[stream.middleware].open_stream(comp.fqn, stream.direction, stream.endpoint)
+                (comp.in_streams if stream.direction == "IN" else comp.out_streams).append(opened)
+            for entry in manifest.services:
+                for fqn in entry.components:
                     comp = self.by_name[fqn]
                     self.requests.expose(fqn, comp.instance, type(comp.instance).services())
-            port = opts.service_port if opts.service_port is not None else middleware["service_port"]
-            attempts = 1 if opts.service_port is not None else SERVICE_PORT_ATTEMPTS + 1
-            self.service_server = ServiceServer(self.poller, self.requests, opts.bind, port, attempts)
-            sync = middleware["stream_managers"].get("socket", {})
-            self.sync = SyncServer(self.poller, opts.bind, sync["sync_port"]) if sync.get("time_sync") else None
+                self.middlewares[entry.middleware].open_services(entry.endpoint)
         except OSError as err:
             self.close()
             raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: {err.strerror or err}") from None
+        except (MorsecError, ValueError) as err:
+            self.close()
+            raise RuntimeFailure(str(err)) from None
+        for mw in self.middlewares.values():
+            for pseudo, obj in mw.services().items():
+                self.requests.expose_more(pseudo, obj, _services_of(obj))
+        locks = [mw.lockstep() for mw in self.middlewares.values()]
+        self.sync = next((lock for lock in locks if lock is not None), None)
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
@@ -328,17 +325,19 @@ class Simulation:
 
     # ---------------------------------------------------------------- the loop
     def announce(self, out=sys.stdout) -> None:
-        lines = ["SCENE INITIALIZED",
-                 f"  services       {self.options.bind}:{self.service_server.port}  (simulation, time, communication"
-                 f"{', components' if len(self.requests.exposed) > 3 else ''})"]
-        if self.sync:
-            lines.append(f"  lockstep       {self.options.bind}:{self.sync.port}")
+        """SCENE INITIALIZED, then the servers (services, lockstep) and every stream's endpoint."""
+        lines = ["SCENE INITIALIZED"]
+        streams = []
+        pseudo = f"simulation, time, communication{', components' if len(self.requests.exposed) > 3 else ''}"
+        for name, mw in sorted(self.middlewares.items()):
+            for what, direction, where in mw.describe():
+                if direction:
+                    streams.append((what, direction, name, where))
+                else:
+                    lines.append(f"  {what:<14} {where}" + (f"  ({pseudo})" if what == "services" else ""))
         width = max([len(c.fqn) for c in self.components] + [10])
-        for comp in sorted(self.components, key=lambda c: c.fqn):
-            for s in comp.socket_streams:
-                lines.append(f"  {comp.fqn:<{width}}  {s.direction:<3}  socket  {self.options.bind}:{s.port}")
-            for t in comp.text_streams:
-                lines.append(f"  {comp.fqn:<{width}}  OUT  text    {t.path}")
+        for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
+            lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
         out.write("\n".join(lines) + "\n")
         out.flush()
 
@@ -359,10 +358,10 @@ class Simulation:
                     break
                 if self.sync is not None and self.sync.engaged and not self.sync.take():
                     self.poller.poll(0.01)
-                    self.service_server.flush()
+                    self._flush()
                     continue
                 self.step()
-                self.service_server.flush()
+                self._flush()
                 if self.view is not None:
                     self.view.sync()
                 self._wait(self.clock.delay())
@@ -374,7 +373,7 @@ class Simulation:
         end = time.perf_counter() + delay
         while delay > 0 and not self.quitting:
             self.poller.poll(delay)
-            self.service_server.flush()
+            self._flush()
             delay = end - time.perf_counter()
 
     def step(self) -> None:
@@ -401,9 +400,13 @@ class Simulation:
                 self._tick_sensor(comp, now)
         self.time_services.wake()
 
+    def _flush(self) -> None:
+        for mw in self.middlewares.values():
+            mw.flush()
+
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
-        for stream in comp.socket_streams:
+        for stream in comp.in_streams:
             received = stream.take()
             if received is not None:
                 message = received
@@ -436,20 +439,14 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
-        listening = False
-        for stream in comp.socket_streams:
-            listening = listening or stream.listening
-        if not (listening or comp.text_streams):
+        listening = [stream for stream in comp.out_streams if stream.listening]
+        if not listening:
             return
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         if message is None:
             return
-        if listening:
-            line = encode(message)
-            for stream in comp.socket_streams:
-                stream.publish(line)
-        for text in comp.text_streams:
-            text.write(message)
+        for stream in listening:
+            stream.publish(message)
 
     def close(self) -> None:
         if getattr(self, "view", None) is not None:
@@ -462,17 +459,10 @@ class Simulation:
                     comp.instance.finalize()
                 except Exception as err:
                     comp.fail_once(err)
-            for stream in comp.socket_streams:
-                stream.close()
-            for text in comp.text_streams:
-                text.close()
-            comp.socket_streams, comp.text_streams = [], []
-        if getattr(self, "service_server", None) is not None:
-            self.service_server.close()
-            self.service_server = None
-        if getattr(self, "sync", None) is not None:
-            self.sync.close()
-            self.sync = None
+            comp.in_streams, comp.out_streams = [], []
+        for mw in getattr(self, "middlewares", {}).values():
+            mw.close()
+        self.middlewares = {}
         self.poller.close()
 
 

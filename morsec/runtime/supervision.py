@@ -34,8 +34,8 @@ class Supervision:
                 services = sim.requests.service_names(comp.fqn)
                 if services:
                     entry["services"] = services
-                    entry["service_interfaces"] = [["morsec.middleware.socket_services.ServiceServer"]]
-                streams = [[f"morsec.middleware.{s.middleware}", s.direction] for s in comp.stream_specs]
+                    entry["service_interfaces"] = [[f"morsec.middleware.{m}"] for m in comp.services]
+                streams = [[f"morsec.middleware.{middleware}", direction] for middleware, direction in comp.streams]
                 if streams:
                     entry["stream_interfaces"] = streams
                 components[comp.fqn] = entry
@@ -75,20 +75,6 @@ class Supervision:
     def set_log_level(self, component: str, level: str) -> None:
         import logging
         logging.getLogger(f"morsec.{component}").setLevel(str(level).upper())
-
-    @service
-    def list_streams(self) -> list[str]:
-        return sorted(self.sim.socket_ports)
-
-    @service
-    def get_stream_port(self, name: str) -> int:
-        if name not in self.sim.socket_ports:
-            raise ValueError(f"Stream unavailable for component {name}")
-        return self.sim.socket_ports[name]
-
-    @service
-    def get_all_stream_ports(self) -> dict:
-        return dict(sorted(self.sim.socket_ports.items()))
 
     @service
     def get_scene_objects(self) -> dict:

@@ -14,6 +14,7 @@ from pydantic_core import PydanticCustomError
 
 from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
 from morsec.errors import did_you_mean
+from morsec.middleware.registry import middlewares, service_middlewares
 from morsec.modifiers.registry import MODIFIERS as MODIFIER_TABLE
 
 
@@ -58,8 +59,9 @@ Color = Annotated[list[Annotated[float, Field(ge=0, le=1)]], Field(min_length=3,
 Basic = Union[bool, int, float, str]
 PropertyBag = dict[str, Basic]
 TimeStrategy = Literal["best_effort", "fixed_step"]
-Middleware = Literal["socket", "text"]
-ServiceMiddleware = Literal["socket"]
+# the registered middlewares (morsec.middleware.registry): a package that adds one extends these
+Middleware = Literal[tuple(middlewares())]  # type: ignore[valid-type]
+ServiceMiddleware = Literal[service_middlewares()]  # type: ignore[valid-type]
 
 
 def _stream_shorthand(value: Any) -> Any:

@@ -7,6 +7,8 @@ from typing import Any
 
 from morsec.component.catalogue import Catalogue
 from morsec.errors import SceneError, yaml_path
+from morsec.middleware.registry import middleware as middleware_class
+from morsec.middleware.registry import service_middlewares
 from morsec.scene.naming import assign_names
 from morsec.scene.sourcemap import SourceMap
 
@@ -86,13 +88,27 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
                 _add_stream(comp, cls, default_interface)
             if not comp.services:
                 _add_service(comp, default_interface)
-        for stream in comp.streams:
+        for k, stream in enumerate(comp.streams):
             if stream.direction is None:
                 stream.direction = cls.direction
+            _check_stream_options(stream, parent_path + ("components", i, "streams", k), fail)
         for m, modifier in enumerate(comp.modifiers):
             _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties)
         _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
                           env_properties)
+
+
+# options a stream may give whatever its middleware (MORSE scripts pass them along)
+_COMMON_STREAM_OPTIONS = {"middleware", "direction", "topic", "frame_id", "method", "path", "classpath"}
+
+
+def _check_stream_options(stream, path: tuple, fail) -> None:
+    """An option that only another middleware reads (a `port` on a text stream) is an error, not ignored."""
+    declared = middleware_class(stream.middleware).stream_options
+    for option in sorted(stream.model_dump(exclude_none=True)):
+        if option not in _COMMON_STREAM_OPTIONS and option not in declared:
+            fail(path + (option,), f"{stream.middleware} streams have no option {option!r}"
+                 + (f" (they take: {', '.join(declared)})" if declared else ""))
 
 
 def _check_robot_requirements(robot, path: tuple, cat: Catalogue, fail) -> None:
@@ -143,5 +159,5 @@ def _add_stream(comp, cls, middleware: str) -> None:
 
 
 def _add_service(comp, middleware: str) -> None:
-    if middleware == "socket" and middleware not in comp.services:
+    if middleware in service_middlewares() and middleware not in comp.services:
         comp.services.append(middleware)

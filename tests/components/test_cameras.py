@@ -263,11 +263,11 @@ def test_a_second_capture_while_one_runs_fails(tmp_path):
 
 
 def _connect(sim, fqn: str) -> socket.socket:
-    port = sim.sim.socket_ports[fqn]
+    port = sim.sim.middlewares["socket"].ports()[fqn]
     client = socket.create_connection(("127.0.0.1", port), timeout=5)
     for _ in range(50):  # the loop accepts clients when it polls
         sim.sim.poller.poll(0.01)
-        if any(s.listening for s in sim.sim.component(fqn).socket_streams):
+        if any(s.listening for s in sim.sim.component(fqn).out_streams):
             return client
     raise AssertionError("the stream never accepted the client")
 

@@ -1,0 +1,107 @@
+"""What a middleware is. One class per middleware, registered by name like a component (built-ins and other
+packages through the `morsec.middlewares` entry points): it declares the stream options it reads, assigns
+every stream's endpoint when the scene is built, and opens them when the build runs.
+
+    build:  Middleware.assign(streams) -> one endpoint per stream (a port, a file ...), written in the manifest
+    run:    Middleware(context, settings) -> open_stream(...) per stream, open_services(...), close()
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar, Protocol
+
+from morsec.component.services import RequestHandler
+from morsec.middleware.poller import Poller
+
+
+@dataclass(frozen=True)
+class StreamRequest:
+    """A stream as the scene asks for it: the component, the direction, the options the scene gave."""
+
+    component: str
+    direction: str  # IN (actuator input) or OUT (sensor output)
+    options: dict[str, Any]
+
+
+@dataclass
+class RunContext:
+    """What the runtime hands a middleware when the simulation starts."""
+
+    poller: Poller  # every socket is polled on the loop's thread
+    requests: RequestHandler  # where service requests go
+    bind: str  # the address servers listen on
+    output_dir: Path  # where file outputs go
+    port_base: int | None = None  # --port-base
+    service_port: int | None = None  # --service-port
+
+
+class OutStream(Protocol):
+    @property
+    def listening(self) -> bool: ...  # whether anyone reads: the sensor's message is built only then
+    def publish(self, message: dict) -> None: ...
+    def close(self) -> None: ...
+
+
+class InStream(Protocol):
+    def take(self) -> dict | None: ...  # the last complete message since the previous take
+    def close(self) -> None: ...
+
+
+class Lockstep(Protocol):
+    """A middleware that can hold the loop: while engaged, a frame runs only when `take()` allows it."""
+
+    @property
+    def engaged(self) -> bool: ...
+    def take(self) -> bool: ...
+
+
+class Middleware:
+    name: ClassVar[str]
+    description: ClassVar[str] = ""
+    # the stream options this middleware reads (the IR's StreamSpec fields); others are refused at build
+    stream_options: ClassVar[tuple[str, ...]] = ()
+    carries_services: ClassVar[bool] = False  # add_service(name) / add_interface(name) expose services on it
+    # serves the simulation's own services (simulation, time, communication) whatever the scene says
+    always_serves: ClassVar[bool] = False
+
+    # ---- build time
+    @classmethod
+    def assign(cls, streams: list[StreamRequest]) -> list[dict[str, Any]]:
+        """The endpoint of each stream (same order), recorded in the manifest; streams come sorted by component."""
+        return [{} for _ in streams]
+
+    @classmethod
+    def services_endpoint(cls) -> dict[str, Any]:
+        """Where services are served (only for a middleware that carries services)."""
+        return {}
+
+    # ---- run time
+    def __init__(self, context: RunContext, settings: dict[str, Any]):
+        """`settings`: configure_stream_manager's options for this middleware (the scene's stream_managers)."""
+        self.context = context
+        self.settings = settings
+
+    def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> InStream | OutStream:
+        raise NotImplementedError(f"middleware {self.name!r} has no streams")
+
+    def open_services(self, endpoint: dict[str, Any]) -> None:
+        raise NotImplementedError(f"middleware {self.name!r} carries no services")
+
+    def services(self) -> dict[str, Any]:
+        """Objects whose @service methods this middleware adds to pseudo-components ({"simulation": obj})."""
+        return {}
+
+    def lockstep(self) -> Lockstep | None:
+        return None
+
+    def flush(self) -> None:
+        """Send what is queued (called every frame)."""
+
+    def describe(self) -> list[tuple[str, str, str]]:
+        """(what, direction, where) per endpoint, for the table printed at SCENE INITIALIZED."""
+        return []
+
+    def close(self) -> None:
+        """Close every endpoint."""

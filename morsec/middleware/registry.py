@@ -1,0 +1,37 @@
+"""The middlewares morsec knows: every class registered under the `morsec.middlewares` entry points, the
+built-in socket and text included (see pyproject.toml). A package adds one the same way."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from importlib.metadata import entry_points
+
+from morsec.errors import MorsecError, did_you_mean
+from morsec.middleware.base import Middleware
+
+ENTRY_POINT_GROUP = "morsec.middlewares"
+
+
+@lru_cache(maxsize=1)
+def middlewares() -> dict[str, type[Middleware]]:
+    found: dict[str, type[Middleware]] = {}
+    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+        cls = ep.load()
+        if not (isinstance(cls, type) and issubclass(cls, Middleware)) or cls.name != ep.name:
+            raise MorsecError(f"entry point {ep.name} = {ep.value}: must name a morsec.middleware.base.Middleware "
+                              f"subclass whose name is {ep.name!r}")
+        found[ep.name] = cls
+    if not found:
+        raise MorsecError("no middleware is registered: morsec is not installed (pip install -e . in its folder)")
+    return found
+
+
+def middleware(name: str) -> type[Middleware]:
+    known = middlewares()
+    if name not in known:
+        raise MorsecError(f"unknown middleware {name!r}{did_you_mean(name, known)}")
+    return known[name]
+
+
+def service_middlewares() -> tuple[str, ...]:
+    return tuple(name for name, cls in middlewares().items() if cls.carries_services)
