@@ -1,5 +1,7 @@
 """Every robot and environment of the catalogue, built into a tiny scene with the real compiler and run
-in MuJoCo: the URDF is valid for ROS tools, the MJCF loads, and a robot left alone stays where it was put."""
+in MuJoCo: the URDF is valid for ROS tools, the MJCF loads, and a robot left alone stays where it was put.
+These are the checks run over every robot; what is particular to one robot (its MORSE name, its mass,
+how it drives) is in tests/components/test_robots_catalogue.py."""
 
 from __future__ import annotations
 
@@ -49,6 +51,26 @@ def _has_ancestor(model: mujoco.MjModel, body: int, ancestor: int) -> bool:
         if body == ancestor:
             return True
     return False
+
+
+def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms: list[int]) -> float:
+    """Lowest z of `geoms` (spheres, capsules, cylinders, boxes: another shape must be added here)."""
+    low = math.inf
+    for g in geoms:
+        z, rot, size = data.geom_xpos[g][2], data.geom_xmat[g].reshape(3, 3), model.geom_size[g]
+        kind = model.geom_type[g]
+        axis_z = abs(rot[2, 2])  # of the geom's z axis (cylinders' and capsules' axis)
+        if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+            low = min(low, z - size[0])
+        elif kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+            low = min(low, z - axis_z * size[1] - size[0])
+        elif kind == mujoco.mjtGeom.mjGEOM_CYLINDER:
+            low = min(low, z - axis_z * size[1] - math.sqrt(max(0.0, 1 - axis_z ** 2)) * size[0])
+        elif kind == mujoco.mjtGeom.mjGEOM_BOX:
+            low = min(low, z - float(np.abs(rot[2]) @ size))
+        else:
+            raise AssertionError(f"lowest_point: add the {mujoco.mjtGeom(kind).name} of geom {model.geom(g).name!r}")
+    return low
 
 
 def test_catalogue_has_robots_and_environments():
@@ -107,6 +129,10 @@ def test_robot_left_alone_stays_put(robot_id, build_yaml):
                    for g in range(model.ngeom) if model.geom_bodyid[g] in bodies)
     start = data.xpos[body].copy()
     assert start[2] == pytest.approx(start_z + cls.spawn_height)
+    colliding = [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies
+                 and (model.geom_contype[g] or model.geom_conaffinity[g])]
+    if colliding:  # spawn_height right: translate z puts the lowest colliding part there (on the ground at 0)
+        assert lowest_point(model, data, colliding) == pytest.approx(start_z, abs=1e-6)
 
     run(model, data, SETTLE_S)
     moved = data.xpos[body] - start

@@ -377,6 +377,29 @@ def test_bad_modifiers_are_build_errors(tmp_path, component, modifier, message):
 
 
 def test_geodetic_modifier_builds_with_environment_properties(tmp_path):
-    build_with(tmp_path, "pose", "{name: geocentric}", f"\n  properties: {{longitude: {LON}, latitude: {LAT}, "
-                                                       f"altitude: {ALT}}}")
-    assert (tmp_path / "out" / "manifest.json").is_file()
+    """With the environment's geodetic properties (what the 'ecef' error above asks for) the build records
+    the modifier on its component and the properties in the scene, and the simulation applies it: the
+    pose at the scene's origin is the environment's point in geocentric coordinates."""
+    text = f"""environment:
+  name: empty
+  time: {{strategy: fixed_step, relative: true}}
+  properties: {{longitude: {LON}, latitude: {LAT}, altitude: {ALT}}}
+robots:
+  - name: r
+    type: fake_robot
+    components:
+      - {{name: c, type: pose, modifiers: [{{name: geocentric}}]}}
+      - {{name: plain, type: pose}}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        converted, plain = h.data("r.c"), h.data("r.plain")
+        manifest = h.sim.manifest  # the build's manifest.json, as the simulation read it
+    components = {c["fqn"]: c for c in manifest["components"]}
+    assert components["r.c"]["modifiers"] == [{"name": "geocentric"}]
+    assert components["r.plain"]["modifiers"] == []
+    assert manifest["scene"]["environment"]["properties"] == {"longitude": LON, "latitude": LAT, "altitude": ALT}
+    ecef = ecef_of(LAT, LON, ALT)
+    assert xyz(plain) == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    assert xyz(converted) == pytest.approx((LON, math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))),
+                                            float(np.linalg.norm(ecef))), abs=1e-6)

@@ -7,6 +7,7 @@ import signal
 import socket
 import subprocess
 import time
+from pathlib import Path
 
 import pytest
 
@@ -24,36 +25,56 @@ def refused(host: str, port: int) -> bool:
     return False
 
 
-@pytest.fixture(scope="module")
-def sims(tmp_path_factory, launched_failures):
-    """The long-running simulations of this module, started together (while the failures run)."""
-    tmp = tmp_path_factory.mktemp("time")
-    sync_port = free_port()
-    fast = Morsec(scene_file(tmp, scene(strategy="best_effort"), "fast"), tmp, prebuild=False,  # builds, then runs
+def fast_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(strategy="best_effort"), "fast"), tmp, prebuild=False,  # builds, then runs
                   args=["--time-strategy", "fixed_step", "--duration", "30"])
-    scaled = Morsec(scene_file(tmp, scene(strategy="best_effort"), "scaled"), tmp, args=["--time-scale", "2"])
-    relative = Morsec(scene_file(tmp, scene(environment={"time": {"relative": True}}, strategy="best_effort"),
-                                 "relative"), tmp, host="127.0.0.2", args=["--bind", "127.0.0.2"])
-    lockstep = Morsec(scene_file(tmp, scene(strategy="fixed_step", environment={
+
+
+def scaled_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(strategy="best_effort"), "scaled"), tmp, args=["--time-scale", "2"])
+
+
+def relative_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(environment={"time": {"relative": True}}, strategy="best_effort"),
+                             "relative"), tmp, host="127.0.0.2", args=["--bind", "127.0.0.2"])
+
+
+def lockstep_sim(tmp: Path) -> Morsec:
+    sync_port = free_port()
+    sim = Morsec(scene_file(tmp, scene(strategy="fixed_step", environment={
         "stream_managers": {"socket": {"time_sync": True, "sync_port": sync_port}}}), "lockstep"), tmp)
-    lockstep.expected_sync_port = sync_port
-    all_sims = {"fast": fast, "scaled": scaled, "relative": relative, "lockstep": lockstep}
+    sim.expected_sync_port = sync_port
+    return sim
+
+
+@pytest.fixture
+def launch(tmp_path):
+    """`launch(fast_sim)`: that simulation, started for this test alone and ready; stopped when the test
+    ends. No test shares a simulation: none depends on what another did to one (quit it, signalled it,
+    changed its time scale) nor on the order the tests run in."""
+    started = []
+
+    def launch(make) -> Morsec:
+        sim = make(tmp_path)
+        started.append(sim)
+        start_all(sim)
+        return sim
+
     try:
-        start_all(*all_sims.values())
-        yield all_sims
+        yield launch
     finally:
-        stop_all(*all_sims.values())
+        stop_all(*started)
 
 
-def test_fixed_step_runs_faster_than_real_time_and_duration_ends_it(sims):
-    fast = sims["fast"]
+def test_fixed_step_runs_faster_than_real_time_and_duration_ends_it(launch):
+    fast = launch(fast_sim)
     assert fast.wait(60) == 0, fast.output()
     wall = fast.seen_at["EXITING SIMULATION"] - fast.seen_at["SCENE INITIALIZED"]
     assert wall < 15.0, f"30 simulated seconds took {wall:.1f} s"  # at least twice real time, even on a busy host
 
 
-def test_best_effort_follows_the_wall_clock_times_the_scale(sims):
-    scaled = sims["scaled"]
+def test_best_effort_follows_the_wall_clock_times_the_scale(launch):
+    scaled = launch(scaled_sim)
     with scaled.client() as client:
         assert client.ok("time", "mode") == "Best Effort"
         w0 = time.monotonic()
@@ -67,8 +88,8 @@ def test_best_effort_follows_the_wall_clock_times_the_scale(sims):
     assert 1.8 <= at_one <= 2.8, f"2 simulated s at scale 1 took {at_one:.2f} s"
 
 
-def test_quit_service_exits_0_and_closes_the_ports(sims):
-    scaled = sims["scaled"]
+def test_quit_service_exits_0_and_closes_the_ports(launch):
+    scaled = launch(scaled_sim)
     ports = [scaled.service_port] + [p for _, p in scaled.streams.values()]
     assert scaled.request("q simulation quit") == "q SUCCESS"
     assert scaled.wait(30) == 0, scaled.output()
@@ -76,8 +97,8 @@ def test_quit_service_exits_0_and_closes_the_ports(sims):
     assert all(refused("127.0.0.1", p) for p in ports)
 
 
-def test_relative_time_and_bind(sims):
-    sim = sims["relative"]
+def test_relative_time_and_bind(launch):
+    sim = launch(relative_sim)
     assert all("127.0.0.2:" in line for line in sim.stdout if line.startswith("  ") and "socket" in line)
     with sim.client() as client:
         now = client.ok("time", "now")
@@ -87,16 +108,16 @@ def test_relative_time_and_bind(sims):
     assert refused("127.0.0.1", sim.service_port)  # listening on the --bind address only
 
 
-def test_sigint_exits_0(sims):
-    sim = sims["relative"]
+def test_sigint_exits_0(launch):
+    sim = launch(relative_sim)
     sim.signal(signal.SIGINT)
     assert sim.wait(30) == 0, sim.output()
     assert "EXITING SIMULATION" in sim.stdout
     assert not [line for line in sim.stderr if "Traceback" in line]
 
 
-def test_lockstep(sims):
-    sim = sims["lockstep"]
+def test_lockstep(launch):
+    sim = launch(lockstep_sim)
     assert sim.sync_port == sim.expected_sync_port
     with sim.client() as client:
         t = client.ok("time", "now")
@@ -124,8 +145,8 @@ def test_lockstep(sims):
         wait_until(lambda: client.ok("time", "now") > t0 + 0.5, timeout=10, message="free running after disconnect")
 
 
-def test_sigterm_exits_0(sims):
-    sim = sims["lockstep"]
+def test_sigterm_exits_0(launch):
+    sim = launch(lockstep_sim)
     sim.signal(signal.SIGTERM)
     assert sim.wait(30) == 0, sim.output()
     assert "EXITING SIMULATION" in sim.stdout
