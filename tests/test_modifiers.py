@@ -395,10 +395,11 @@ robots:
         h.step()
         converted, plain = h.data("r.c"), h.data("r.plain")
         manifest = h.sim.manifest  # the build's manifest.json, as the simulation read it
-    components = {c["fqn"]: c for c in manifest["components"]}
-    assert components["r.c"]["modifiers"] == [{"name": "geocentric"}]
-    assert components["r.plain"]["modifiers"] == []
-    assert manifest["scene"]["environment"]["properties"] == {"longitude": LON, "latitude": LAT, "altitude": ALT}
+    components = {c.fqn: c for c in manifest.components}
+    [recorded] = components["r.c"].modifiers
+    assert (recorded.name, recorded.cls) == ("geocentric", "morsec.modifiers.coordinates:ToGeocentric")
+    assert components["r.plain"].modifiers == []
+    assert manifest.scene["environment"]["properties"] == {"longitude": LON, "latitude": LAT, "altitude": ALT}
     ecef = ecef_of(LAT, LON, ALT)
     assert xyz(plain) == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
     assert xyz(converted) == pytest.approx((LON, math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))),
