@@ -79,3 +79,16 @@ def test_a_manifest_that_breaks_the_contract_is_one_line_and_exit_1(tmp_path):
     assert result.returncode == 1
     assert result.stderr.strip().count("\n") == 0, result.stderr
     assert "manifest.json: streams.0.direction: Field required; rebuild it (morsec build)" in result.stderr
+
+
+def test_modifier_parameters_are_resolved_at_build_with_the_environments_defaults(tmp_path):
+    """The UTM offsets a scene leaves out come from its environment properties, decided once at build."""
+    from morsec.app.project import build_scene
+    from morsec.scene.manifest import load_manifest
+    pose = {"name": "pose", "type": "pose", "modifiers": [{"name": "utm", "x_offset": 5.0}]}
+    content = scene(robot("robot", pose))
+    content["environment"]["properties"] = {"UTMXOffset": 100.0, "UTMYOffset": 200.0}
+    build = build_scene(scene_file(tmp_path, content), tmp_path / "build")
+    [modifier] = next(c for c in load_manifest(build).components if c.fqn == "robot.pose").modifiers
+    assert modifier.cls == "morsec.modifiers.coordinates:ToUTM"
+    assert (modifier.params["x_offset"], modifier.params["y_offset"], modifier.params["z_offset"]) == (5.0, 200.0, 0.0)
