@@ -25,6 +25,7 @@ from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
 from morsec.component.catalogue import Catalogue, is_builtin, level_class
 from morsec.errors import SceneError, yaml_path
+from morsec.kits.mjcf_names import belongs_to
 from morsec.modifiers.registry import modifier_class
 from morsec.scene.manifest import (BUILTIN_ROOT, FORMAT_VERSION, MANIFEST, ComponentEntry, ComponentRef, Loop,
                                    Manifest, ModifierEntry, RobotEntry)
@@ -170,7 +171,7 @@ def _enclosing_body(xml: str, line: int) -> str | None:
 
 def _scene_path(scene, body: str) -> tuple | None:
     for r, robot in enumerate(scene.robots):
-        if body == robot.name or body.startswith(robot.name + "/"):
+        if belongs_to(body, robot.name):
             return ("robots", r)
     for placed in walk_components(scene):
         if body == placed.fqn:

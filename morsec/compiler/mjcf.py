@@ -19,6 +19,8 @@ from morsec import __version__
 from morsec.component.catalogue import Catalogue
 from morsec.errors import SceneError
 from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec
+from morsec.kits import mjcf_names
+from morsec.kits.mjcf_names import part
 from morsec.resources import data_dir
 from morsec.scene.naming import join
 from morsec.compiler.assets import Assets, asset_dir
@@ -37,6 +39,7 @@ def template_env(cat: Catalogue) -> jinja2.Environment:
                              trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=False)
     env.filters["f"] = fmt
     env.filters["v"] = fmt_vec
+    env.globals["mjcf"] = mjcf_names  # templates spell MJCF names through morsec.kits.mjcf_names
     return env
 
 
@@ -198,8 +201,8 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
         fqn = join(parent, comp.name)
         cls = devices[comp.type]
         tree = robot_trees[robot.name]
-        joints = {link.joint["name"]: f"{robot.name}/{link.joint['name']}" for link in tree.walk() if link.joint}
-        links = {link.name: (robot.name if link is tree else f"{robot.name}/{link.name}") for link in tree.walk()}
+        joints = {link.joint["name"]: part(robot.name, link.joint["name"]) for link in tree.walk() if link.joint}
+        links = {link.name: (robot.name if link is tree else part(robot.name, link.name)) for link in tree.walk()}
         own = device_links(cls, fqn)
         own_joints = [{"name": link.joint["name"], "mjname": link.joint["mjname"], "type": link.joint["type"],
                        "range": link.joint["range"]} for link in (own.walk() if own else ()) if link.joint]
@@ -237,11 +240,11 @@ def _prepare_links(tree: Link, robot) -> None:
     scale = (robot.mass / total) if (robot.mass and total > 0) else 1.0
     color = list(robot.color) + [1.0] if robot.color and len(robot.color) == 3 else robot.color
     for link in tree.walk():
-        link.body = robot.name if link is tree else f"{robot.name}/{link.name}"
+        link.body = robot.name if link is tree else part(robot.name, link.name)
         link.mass *= scale
         link.inertia = link.inertia * scale
         if link.joint:
-            link.joint["mjname"] = f"{robot.name}/{link.joint['name']}"
+            link.joint["mjname"] = part(robot.name, link.joint["name"])
         has_visual = any(not g.collision for g in link.geoms)
         for g in link.geoms:
             g.visible = g.collision and not has_visual
@@ -285,7 +288,7 @@ def device_links(cls, fqn: str) -> Link | None:
     tree = copy.deepcopy(_device_tree(path, path.stat().st_mtime_ns if path.is_file() else 0))
     armature = getattr(cls, "joint_armature", {}) or {}
     for link in tree.walk():
-        link.body = f"{fqn}/{link.name}"
+        link.body = part(fqn, link.name)
         has_visual = any(not g.collision for g in link.geoms)
         for g in link.geoms:
             if g.kind == "mesh":
@@ -293,7 +296,7 @@ def device_links(cls, fqn: str) -> Link | None:
                                  "(use boxes, cylinders and spheres)")
             g.visible = g.collision and not has_visual
         if link.joint:
-            link.joint["mjname"] = f"{fqn}/{link.joint['name']}"
+            link.joint["mjname"] = part(fqn, link.joint["name"])
             if link.joint["name"] in armature:
                 link.joint["armature"] = float(armature[link.joint["name"]])
     return tree
@@ -317,7 +320,7 @@ def _mounts(scene, cat: Catalogue) -> dict[str, str]:
             mount = getattr(devices[comp.type], "mount_body", None)
             if mount:
                 for child in comp.components:
-                    out[join(fqn, child.name)] = f"{fqn}/{mount}"
+                    out[join(fqn, child.name)] = part(fqn, mount)
             visit(comp.components, fqn)
 
     for robot in scene.robots:
@@ -330,8 +333,8 @@ def _move_bodies(root: ET.Element, mounts: dict[str, str]) -> None:
     bodies = {b.get("name"): b for b in root.iter("body")}
     for child, target in mounts.items():
         if target not in bodies:
-            owner = target.rsplit("/", 1)[0]
-            own = ", ".join(sorted(b for b in bodies if b.startswith(owner + "/"))) or "none"
+            owner = mjcf_names.owner(target)
+            own = ", ".join(sorted(b for b in bodies if b != owner and mjcf_names.belongs_to(b, owner))) or "none"
             raise SceneError(f"component {owner!r}: its class mounts its children on body {target!r}, which its "
                              f"model does not have (its bodies: {own})")
         body = bodies[child]

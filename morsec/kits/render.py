@@ -9,7 +9,7 @@ import numpy as np
 
 from morsec.errors import MorsecError, RuntimeFailure
 
-DEFAULT_CAMERA = "morsec_default"  # the environment's camera (set_camera_location / set_camera_rotation)
+from morsec.kits.mjcf_names import DEFAULT_CAMERA
 
 
 def open_renderer(model, width: int, height: int):

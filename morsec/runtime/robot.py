@@ -5,6 +5,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from morsec.kits import mjcf_names
 from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
 
@@ -41,7 +42,8 @@ class RobotHandle:
         self.ground = bool(getattr(properties, "GroundRobot", False))
         self.body_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
         self.qpos_adr, self.qvel_adr = free_joint(m, self.body_id) or (None, None)
-        ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"{name}/{axis}") for axis in ("vx", "vy", "wz")]
+        ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
+               for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
 
     @property

@@ -12,6 +12,7 @@ import time
 from typing import Literal
 
 from morsec.errors import RuntimeFailure
+from morsec.kits.mjcf_names import DEFAULT_CAMERA
 
 
 class View:
@@ -56,7 +57,7 @@ def _native(model, data, display_options: dict) -> View:
         if display_options.get("show_physics"):
             viewer.opt.geomgroup[3] = 1
             viewer.opt.flags[mujoco.mjtVisFlag.mjVIS_CONTACTPOINT] = 1
-        camera = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, "morsec_default")
+        camera = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, DEFAULT_CAMERA)
         if camera >= 0:
             viewer.cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
             viewer.cam.fixedcamid = camera
