@@ -20,7 +20,9 @@ from pathlib import Path
 from typing import Literal, get_args, get_origin
 
 from morsec.component.contract import KINDS, Component, ComponentProperties, Device
-from morsec.errors import MorsecError, did_you_mean
+from morsec.errors import MorsecError, did_you_mean, one_of
+from morsec.modifiers.base import Modifier
+from morsec.modifiers.registry import MODIFIERS
 from morsec.resources import data_dir
 
 PROJECT_FILE = "morsec.toml"
@@ -67,6 +69,17 @@ class Catalogue:
 
     def all(self) -> list[type[Component]]:
         return [cls for kind in KINDS for _, cls in sorted(self.by_kind.get(kind, {}).items())]
+
+    def applies_to(self, modifier: str) -> list[str]:
+        """Ids of the sensors and actuators modifier `modifier` applies to (declared or inherited)."""
+        return sorted(cid for cid, cls in self.devices().items() if modifier_class(modifier, cls) is not None)
+
+    def modifiers(self) -> dict[str, dict[str, type[Modifier]]]:
+        """{modifier name: {component id: the class it gives there}} for every name of the registry (what
+        MORSE's MORSE_MODIFIER_DICT held), collected from the components' declarations."""
+        devices = sorted(self.devices().items())
+        return {name: {cid: impl for cid, cls in devices if (impl := modifier_class(name, cls)) is not None}
+                for name in MODIFIERS}
 
 
 def project_root(start: Path) -> Path | None:
@@ -166,6 +179,7 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     if cls.builder_name is None:
         cls.builder_name = camel_case(cid)
     check_properties(cls.Properties, folder)
+    check_modifiers(cls, folder)
     return cls
 
 
@@ -193,6 +207,25 @@ def check_properties(model: type[ComponentProperties], folder: Path) -> None:
         if not _basic(info.annotation):
             raise MorsecError(f"{folder / 'component.py'}: property {name!r} must be bool, int, float or str "
                               f"(got {info.annotation!r}), as MORSE's add_property")
+
+
+def check_modifiers(cls: type[Component], folder: Path) -> None:
+    declared = getattr(cls, "modifiers", {})
+    if not isinstance(declared, dict):
+        raise MorsecError(f"{folder / 'component.py'}: `modifiers` must be a mapping {{name: Modifier class}}")
+    for name, impl in declared.items():
+        if name not in MODIFIERS:
+            raise MorsecError(f"{folder / 'component.py'}: unknown modifier {name!r} in `modifiers`"
+                              f"{did_you_mean(str(name), MODIFIERS) or '; modifiers: ' + one_of(MODIFIERS)}")
+        if not (isinstance(impl, type) and issubclass(impl, Modifier)):
+            raise MorsecError(f"{folder / 'component.py'}: modifiers[{name!r}] must be a subclass of "
+                              f"morsec.modifiers.base.Modifier (got {impl!r})")
+
+
+def modifier_class(name: str, cls: type[Component]) -> type[Modifier] | None:
+    """The modifier class `alter(name)` gives on a component class (declared by the class or inherited from
+    its parents: a preset such as `sick` takes the modifiers of `laser_scanner`); None: it does not apply."""
+    return getattr(cls, "modifiers", {}).get(name.lower())
 
 
 def level_class(cls: type[Device], level: str | None) -> type[Device]:

@@ -16,7 +16,7 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from morsec.component.catalogue import Catalogue, level_class
+from morsec.component.catalogue import Catalogue, level_class, modifier_class
 from morsec.constants import SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
 from morsec.errors import RuntimeFailure
 from morsec.middleware.poller import Poller
@@ -24,7 +24,6 @@ from morsec.middleware.socket_services import ServiceServer
 from morsec.middleware.socket_streams import SocketStream, encode
 from morsec.middleware.sync import SyncServer
 from morsec.middleware.text import TextStream
-from morsec.modifiers.registry import modifier_class
 from morsec.runtime.clock import Clock, Periodic
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.scene.models import StreamSpec
