@@ -92,3 +92,16 @@ def test_architecture_page_names_every_package_of_the_table():
     page = (PACKAGE.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
     missing = [prefix for _, prefixes in LAYERS for prefix in prefixes if f"`{prefix}`" not in page]
     assert not missing, f"docs/architecture.md does not describe: {missing}"
+
+
+def test_component_folders_import_nothing_after_the_components_layer():
+    """A component folder (component.py and its helper modules) uses the contract, the kits and the
+    modifiers: the runtime, the compiler and the rest come after it."""
+    components = layer_of("morsec.component")
+    backwards = []
+    for path in sorted((PACKAGE.parent / "components").rglob("*.py")):
+        for target in sorted(imported(path, "morsec_components.folder.component")):
+            there = layer_of(target)
+            if there is not None and there > components:
+                backwards.append(f"{path.relative_to(PACKAGE.parent)} imports {target} ({LAYERS[there][0]})")
+    assert not backwards, "component folders importing past the components layer:\n" + "\n".join(backwards)

@@ -404,3 +404,98 @@ robots:
     assert xyz(plain) == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
     assert xyz(converted) == pytest.approx((LON, math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))),
                                             float(np.linalg.norm(ecef))), abs=1e-6)
+
+
+# ---------------------------------------------------------------- a project's own components
+
+BEACON = '''from morsec.component import DataField, Sensor
+from morsec.modifiers.noise import PositionNoise
+
+
+class Beacon(Sensor):
+    """Reads the fixed point (1, 2, 3){note}."""
+
+    {modifiers}
+    data = (DataField("x", 0.0, "float", "m"), DataField("y", 0.0, "float", "m"),
+            DataField("z", 0.0, "float", "m"))
+
+    def default_action(self):
+        self.local_data.update(x=1.0, y=2.0, z=3.0)
+
+
+COMPONENT = Beacon
+'''
+
+# a preset of a built-in: takes the modifiers `pose` declares
+POSE_PRESET = '''from morsec.component import component_class
+
+Pose = component_class("sensors", "pose")
+
+
+class LowPose(Pose):
+    """A pose sensor for tests."""
+
+    builder_name = "LowPose"
+
+
+COMPONENT = LowPose
+'''
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory):
+    """A project with a sensor declaring `noise`, one declaring no modifier and a preset of `pose`."""
+    root = tmp_path_factory.mktemp("project")
+    (root / "morsec.toml").write_text('[project]\nname = "p"\ncomponents = ["components"]\n')
+    sources = {"beacon": BEACON.format(note="", modifiers='modifiers = {"noise": PositionNoise}'),
+               "quiet_beacon": BEACON.format(note=", no modifier", modifiers="pass"),
+               "low_pose": POSE_PRESET}
+    for cid, source in sources.items():
+        folder = root / "components" / "sensors" / cid
+        folder.mkdir(parents=True)
+        (folder / "component.py").write_text(source)
+    return root
+
+
+def project_scene(*components: str) -> str:
+    return ("environment: {name: empty, time: {strategy: fixed_step, relative: true}}\nrobots:\n"
+            "  - name: r\n    type: fake_robot\n    components:\n"
+            + "".join(f"      - {c}\n" for c in components))
+
+
+def test_a_project_component_declaring_noise_gets_noisy_output(project, tmp_path):
+    text = project_scene("{name: noisy, type: beacon, modifiers: [{name: noise, pos_std: 0.5}]}",
+                         "{name: clean, type: quiet_beacon}",
+                         "{name: pose, type: low_pose, modifiers: [{name: noise, pos_std: 0.2, rot_std: 0.0}, "
+                         "{name: feet}]}")
+    samples = []
+    with simulate(text, tmp_path, project=project, seed=5) as h:
+        for _ in range(TICKS):
+            h.step()
+            samples.append((h.data("r.noisy"), h.data("r.clean"), h.data("r.pose")))
+        assert h.sim.component("r.noisy").modifiers[0].__class__.__name__ == "PositionNoise"
+    for field, value in zip("xyz", (1.0, 2.0, 3.0)):
+        check(np.array([noisy[field] for noisy, _, _ in samples]), value, 0.5)
+        check(np.array([clean[field] for _, clean, _ in samples]), value, 0.0)
+        check(np.array([pose[field] for _, _, pose in samples]), 0.0, 0.2 * FEET)  # noise, then feet
+
+
+def test_a_project_component_without_the_modifier_is_a_scene_error(project, tmp_path):
+    text = project_scene("{name: clean, type: quiet_beacon, modifiers: [{name: noise}]}")
+    with pytest.raises(SceneError) as err:
+        with simulate(text, tmp_path, project=project):
+            pass
+    assert ("modifiers[0].name: modifier 'noise' does not apply to 'quiet_beacon' (it applies to: beacon, gps, "
+            "gyroscope, imu, low_pose, odometry, pose)") in str(err.value)
+
+
+def test_a_component_declaring_an_unknown_modifier_names_its_file(tmp_path):
+    (tmp_path / "morsec.toml").write_text('[project]\nname = "p"\ncomponents = ["components"]\n')
+    folder = tmp_path / "components" / "sensors" / "odd"
+    folder.mkdir(parents=True)
+    (folder / "component.py").write_text(BEACON.format(note="", modifiers='modifiers = {"nosie": PositionNoise}'))
+    from morsec.component.catalogue import load_catalogue
+    from morsec.errors import MorsecError
+    with pytest.raises(MorsecError, match=r"odd/component\.py: unknown modifier 'nosie' in `modifiers`; "
+                                          r"did you mean one of 'noise'"):
+        load_catalogue(tmp_path)

@@ -340,6 +340,8 @@ def component_section(kind: str, cls, out_dir: Path | None) -> str:
         services = list(cls.services())
         if services:
             facts.append("services " + ", ".join(f"`{s}`" for s in services))
+        if cls.modifiers:
+            facts.append("modifiers " + ", ".join(f"`{m}`" for m in cls.modifiers))
     if out_dir is not None:
         from morsec.app.gallery import page_path
         facts.append(f"[gallery page]({page_path(kind, cls.id)})")

@@ -2,12 +2,15 @@
 
 Built-in components, a project's own `components/` folders and folders registered by other packages
 (entry point group `morsec.components`) go through this same mechanism; nothing about built-ins is special.
-A folder is a component when it holds `component.py` defining `COMPONENT = <class>`.
+A folder is a component when it holds `component.py` defining `COMPONENT = <class>`. The folder is loaded as
+a package, so component.py imports the modules beside it as usual (`from .ik import solve`, `from . import
+helpers`).
 """
 
 from __future__ import annotations
 
 import hashlib
+import importlib.machinery
 import importlib.util
 import os
 import re
@@ -20,7 +23,9 @@ from pathlib import Path
 from typing import Any, Literal, get_args, get_origin
 
 from morsec.component.contract import KINDS, Component, ComponentProperties, Device
-from morsec.errors import MorsecError, did_you_mean
+from morsec.errors import MorsecError, did_you_mean, one_of
+from morsec.modifiers.base import Modifier
+from morsec.modifiers.registry import MODIFIERS
 from morsec.resources import data_dir
 
 PROJECT_FILE = "morsec.toml"
@@ -68,6 +73,17 @@ class Catalogue:
 
     def all(self) -> list[type[Component]]:
         return [cls for kind in KINDS for _, cls in sorted(self.by_kind.get(kind, {}).items())]
+
+    def applies_to(self, modifier: str) -> list[str]:
+        """Ids of the sensors and actuators modifier `modifier` applies to (declared or inherited)."""
+        return sorted(cid for cid, cls in self.devices().items() if modifier_class(modifier, cls) is not None)
+
+    def modifiers(self) -> dict[str, dict[str, type[Modifier]]]:
+        """{modifier name: {component id: the class it gives there}} for every name of the registry (what
+        MORSE's MORSE_MODIFIER_DICT held), collected from the components' declarations."""
+        devices = sorted(self.devices().items())
+        return {name: {cid: impl for cid, cls in devices if (impl := modifier_class(name, cls)) is not None}
+                for name in MODIFIERS}
 
 
 def project_root(start: Path) -> Path | None:
@@ -135,7 +151,8 @@ def _load(roots: tuple[Path, ...]) -> Catalogue:
 
 
 def _module_name(folder: Path, kind: str, cid: str) -> str:
-    """A stable module name per component folder (two projects may both have a `thermal_cam`)."""
+    """A stable package name per component folder (two projects may both have a `thermal_cam`); its
+    component.py is the module `<name>.component`."""
     digest = hashlib.sha1(str(folder.resolve()).encode()).hexdigest()[:8]
     return f"morsec_components.{kind}.{re.sub(r'[^0-9A-Za-z_]', '_', cid)}_{digest}"
 
@@ -149,13 +166,40 @@ def is_builtin(cls: type[Component]) -> bool:
         return False
 
 
+def _package(folder: Path, name: str):
+    """The folder as the package `name` (its `__init__.py` run, if it has one): modules beside component.py
+    are its submodules. A package loaded before is dropped with its submodules: a folder loads afresh, whole."""
+    for loaded in [m for m in sys.modules if m == name or m.startswith(name + ".")]:
+        del sys.modules[loaded]
+    parts = name.split(".")
+    for i in range(1, len(parts)):  # morsec_components, morsec_components.<kind>: empty packages, for `import`
+        parent = ".".join(parts[:i])
+        if parent not in sys.modules:
+            sys.modules[parent] = importlib.util.module_from_spec(importlib.machinery.ModuleSpec(parent, None,
+                                                                                                is_package=True))
+    init = folder / "__init__.py"
+    if init.is_file():
+        spec = importlib.util.spec_from_file_location(name, init, submodule_search_locations=[str(folder)])
+    else:
+        spec = importlib.machinery.ModuleSpec(name, None, is_package=True)
+        spec.submodule_search_locations = [str(folder)]
+    package = importlib.util.module_from_spec(spec)
+    sys.modules[name] = package
+    if spec.loader is not None:
+        spec.loader.exec_module(package)
+    return package
+
+
 def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
-    module_name = _module_name(folder, kind, cid)
-    spec = importlib.util.spec_from_file_location(module_name, folder / "component.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[module_name] = module
+    package_name = _module_name(folder, kind, cid)
+    module_name = f"{package_name}.component"
     try:
+        package = _package(folder, package_name)
+        spec = importlib.util.spec_from_file_location(module_name, folder / "component.py")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[module_name] = module
         spec.loader.exec_module(module)
+        package.component = module
     except Exception as err:  # a broken user component must name its file
         raise MorsecError(f"{folder / 'component.py'}: cannot load component: {type(err).__name__}: {err}") from None
     cls = getattr(module, "COMPONENT", None)
@@ -167,6 +211,7 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     if cls.builder_name is None:
         cls.builder_name = camel_case(cid)
     check_properties(cls.Properties, folder)
+    check_modifiers(cls, folder)
     return cls
 
 
@@ -203,7 +248,7 @@ def component_class(kind: str, cid: str, start: Path | None = None) -> type[Comp
     for root in search_path(start):
         folder = root / kind / cid
         if (folder / "component.py").is_file():
-            module = sys.modules.get(_module_name(folder, kind, cid))
+            module = sys.modules.get(f"{_module_name(folder, kind, cid)}.component")
             loaded = getattr(module, "COMPONENT", None)
             return loaded if getattr(loaded, "id", None) == cid else load_component(folder, kind, cid)
     raise MorsecError(f"no {kind[:-1]} {cid!r} on the component search path")
@@ -220,6 +265,25 @@ def check_properties(model: type[ComponentProperties], folder: Path) -> None:
         if not _basic(info.annotation):
             raise MorsecError(f"{folder / 'component.py'}: property {name!r} must be bool, int, float or str "
                               f"(got {info.annotation!r}), as MORSE's add_property")
+
+
+def check_modifiers(cls: type[Component], folder: Path) -> None:
+    declared = getattr(cls, "modifiers", {})
+    if not isinstance(declared, dict):
+        raise MorsecError(f"{folder / 'component.py'}: `modifiers` must be a mapping {{name: Modifier class}}")
+    for name, impl in declared.items():
+        if name not in MODIFIERS:
+            raise MorsecError(f"{folder / 'component.py'}: unknown modifier {name!r} in `modifiers`"
+                              f"{did_you_mean(str(name), MODIFIERS) or '; modifiers: ' + one_of(MODIFIERS)}")
+        if not (isinstance(impl, type) and issubclass(impl, Modifier)):
+            raise MorsecError(f"{folder / 'component.py'}: modifiers[{name!r}] must be a subclass of "
+                              f"morsec.modifiers.base.Modifier (got {impl!r})")
+
+
+def modifier_class(name: str, cls: type[Component]) -> type[Modifier] | None:
+    """The modifier class `alter(name)` gives on a component class (declared by the class or inherited from
+    its parents: a preset such as `sick` takes the modifiers of `laser_scanner`); None: it does not apply."""
+    return getattr(cls, "modifiers", {}).get(name.lower())
 
 
 def level_class(cls: type[Device], level: str | None) -> type[Device]:

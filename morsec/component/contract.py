@@ -30,6 +30,7 @@ from pydantic import BaseModel, ConfigDict
 from morsec.component.services import ServiceInfo, service
 from morsec.errors import did_you_mean
 from morsec.kits.geometry import matrix_to_euler
+from morsec.modifiers.base import Modifier
 
 
 class ComponentProperties(BaseModel):
@@ -104,6 +105,10 @@ class Device(Component):
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None
+    # the modifiers (`alter(name)`) that apply to this component: {name: Modifier class}, names from
+    # morsec.modifiers.registry, e.g. {"noise": PoseNoise, "ned": ToNED}. A subclass (a preset, a level)
+    # inherits them, as any class attribute; to add some: {**Base.modifiers, "feet": ToFeet}
+    modifiers: ClassVar[dict[str, type[Modifier]]] = {}
 
     @classmethod
     def default_level(cls) -> str | None:

@@ -164,3 +164,11 @@ class FromFeet(Modifier):
             return
         x, y, z = _xyz(data)
         _set(data, x / FEET_PER_METRE, y / FEET_PER_METRE, z / FEET_PER_METRE)
+
+
+# the coordinate modifiers of a component whose data holds a position x, y, z: a sensor's output converted
+# (`modifiers = {**POSITION_OUT, ...}`) or an actuator's input converted back (POSITION_IN)
+POSITION_OUT: dict[str, type[Modifier]] = {"ned": ToNED, "utm": ToUTM, "ecef": ToECEF, "geodetic": ToGeodetic,
+                                           "geocentric": ToGeocentric, "feet": ToFeet}
+POSITION_IN: dict[str, type[Modifier]] = {"ned": FromNED, "utm": FromUTM, "ecef": FromECEF, "geodetic": FromGeodetic,
+                                          "geocentric": FromGeocentric, "feet": FromFeet}

@@ -1,44 +1,22 @@
-"""Which modifier class `alter(name)` gives for each component type (MORSE's MORSE_MODIFIER_DICT)."""
+"""The modifier names `alter(name)` accepts (MORSE's modifier modules), each with what it does.
+
+Which class a name gives on a component, and so which components it applies to, the component declares
+(`Device.modifiers`, e.g. `{"noise": PoseNoise, "ned": ToNED}`); the catalogue collects the declarations
+(`morsec.component.catalogue.modifier_class`, `Catalogue.applies_to`). This table is the set of names a scene
+may use: the scene IR checks names against it and the JSON Schema and docs list it."""
 
 from __future__ import annotations
 
-from morsec.modifiers import coordinates as c
-from morsec.modifiers import noise as n
-from morsec.modifiers.base import Modifier
-
-_POSITION_OUT = ("pose", "gps")
-_POSITION_IN = ("destination", "waypoint", "teleport")
-
-
-def _coords(to, frm) -> dict[str, type[Modifier]]:
-    return {**{t: to for t in _POSITION_OUT}, **{t: frm for t in _POSITION_IN}}
-
-
-MODIFIERS: dict[str, dict[str, type[Modifier]]] = {
-    "noise": {"imu": n.IMUNoise, "odometry": n.PoseNoise, "pose": n.PoseNoise, "gps": n.PositionNoise,
-              "gyroscope": n.OrientationNoise},
-    "posenoise": {"odometry": n.PoseNoise, "pose": n.PoseNoise},
-    "imunoise": {"imu": n.IMUNoise},
-    "odometrynoise": {"odometry": n.OdometryNoise},
-    "ned": {**_coords(c.ToNED, c.FromNED), "gyroscope": c.AnglesToNED, "orientation": c.AnglesFromNED},
-    "utm": {"pose": c.ToUTM, "gps": c.ToUTM, "destination": c.FromUTM, "waypoint": c.FromUTM},
-    "ecef": _coords(c.ToECEF, c.FromECEF),
-    "geodetic": _coords(c.ToGeodetic, c.FromGeodetic),
-    "geocentric": _coords(c.ToGeocentric, c.FromGeocentric),
-    "feet": _coords(c.ToFeet, c.FromFeet),
+MODIFIERS: dict[str, str] = {
+    "noise": "Gaussian noise on what the component measures (pose, position, orientation, IMU rates and "
+             "accelerations)",
+    "posenoise": "Gaussian noise on a pose: x, y, z and roll, pitch, yaw",
+    "imunoise": "Gaussian noise on an IMU's angular velocity and linear acceleration",
+    "odometrynoise": "odometry scale error and heading drift",
+    "ned": "North-East-Down coordinates (x north, y east, z down; headings clockwise from north)",
+    "utm": "UTM coordinates: the scene's UTM offsets added (out) or subtracted (in)",
+    "ecef": "Earth-centred, Earth-fixed coordinates (WGS84), m",
+    "geodetic": "longitude, latitude (degrees) and altitude (m, WGS84)",
+    "geocentric": "longitude, geocentric latitude (degrees) and distance to the Earth's centre (m)",
+    "feet": "positions in feet",
 }
-
-
-def modifier_class(name: str, component_cls) -> type[Modifier] | None:
-    """The modifier class for a component class, looked up by its id then its parents' (a preset such as
-    `sick` takes the modifiers of `laser_scanner`)."""
-    table = MODIFIERS.get(name.lower(), {})
-    for klass in component_cls.__mro__:
-        cid = vars(klass).get("id")
-        if cid and cid in table:
-            return table[cid]
-    return None
-
-
-def applicable(name: str) -> list[str]:
-    return sorted(MODIFIERS.get(name.lower(), {}))

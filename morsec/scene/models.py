@@ -93,7 +93,7 @@ class ModifierSpec(Strict):
 
     model_config = ConfigDict(extra="allow", allow_inf_nan=False)
     name: Annotated[str, BeforeValidator(lambda v: v.lower() if isinstance(v, str) else v)] = Field(
-        description="modifier: noise, posenoise, imunoise, ned, utm, ecef, geodetic, geocentric, feet")
+        description="modifier: " + ", ".join(MODIFIER_TABLE))
 
     @model_validator(mode="after")
     def _known(self) -> "ModifierSpec":
@@ -136,7 +136,7 @@ class ComponentBase(Strict):
     overlays: list[OverlaySpec] = Field(default_factory=list, description="add_overlay")
     color: Color | None = Field(None, description="set_color: RGB(A) in 0..1")
     profile: bool = Field(False, description="profile: report time spent in this component")
-    components: list["AnyComponent"] = Field(default_factory=list, description="children (append on a component)")
+    components: list["AnyComponent"] = Field(default_factory=list, description="children (append on a component)")  # noqa: F821 (defined below)
 
 
 class RobotBase(Strict):
@@ -157,7 +157,7 @@ class RobotBase(Strict):
     physics_type: Literal["dynamic", "static", "rigid_body", "no_collision"] | None = Field(
         None, description="set_physics_type; static robots have no free joint")
     color: Color | None = Field(None, description="set_color")
-    components: list["AnyComponent"] = Field(default_factory=list, description="sensors and actuators")
+    components: list["AnyComponent"] = Field(default_factory=list, description="sensors and actuators")  # noqa: F821 (defined below)
 
 
 class ObjectSpec(Strict):

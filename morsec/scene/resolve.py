@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from morsec.component.catalogue import Catalogue
+from morsec.component.catalogue import Catalogue, modifier_class
 from morsec.errors import SceneError, yaml_path
 from morsec.middleware.registry import middleware as middleware_class
 from morsec.middleware.registry import service_middlewares
@@ -93,7 +93,8 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
                 stream.direction = cls.direction
             _check_stream_options(stream, parent_path + ("components", i, "streams", k), fail)
         for m, modifier in enumerate(comp.modifiers):
-            _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties)
+            _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties,
+                            cat)
         _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
                           env_properties)
 
@@ -131,14 +132,13 @@ def _check_robot_requirements(robot, path: tuple, cat: Catalogue, fail) -> None:
     visit(robot.components, path)
 
 
-def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict) -> None:
+def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict, cat: Catalogue) -> None:
     from pydantic import ValidationError
 
-    from morsec.modifiers.registry import applicable, modifier_class
     impl = modifier_class(modifier.name, cls)
     if impl is None:
         fail(path + ("name",), f"modifier {modifier.name!r} does not apply to {cls.id!r} "
-                               f"(it applies to: {', '.join(applicable(modifier.name))})")
+                               f"(it applies to: {', '.join(cat.applies_to(modifier.name)) or 'no component'})")
     missing = [k for k in ("longitude", "latitude", "altitude") if k not in env_properties]
     if impl.needs_geo and missing:
         fail(path + ("name",), f"modifier {modifier.name!r} needs the environment properties longitude, latitude "

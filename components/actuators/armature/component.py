@@ -5,13 +5,14 @@ The arm is the component's own model, a xacro file of its folder (`xacro`, read 
 link L becomes body `<fqn>/L`, joint J `<fqn>/J`). Each joint is a real MuJoCo joint held by a position
 servo of the same name (actuator.xml.j2); this actuator moves the servos' setpoints at the joint speeds
 (`RotationSpeed`, `LinearSpeed` or a service's `speed`) with velocity and gravity feed-forward
-(`morsec.runtime.robot.JointServos`). `local_data` is the joint dict {joint: target}, root to tip: what a
+(`morsec.kits.servos.JointServos`). `local_data` is the joint dict {joint: target}, root to tip: what a
 stream sends in (joints it leaves out keep their targets). A movement is over when every joint is within
 `AngleTolerance` (rad) or `DistanceTolerance` (m) of its target: a pending `rotate`, `translate`,
 `rotate_joints` or `translate_joints` then answers SUCCESS.
 
-Inverse kinematics uses MuJoCo's own Jacobians: damped least squares on `mj_jac` of the IK target's body
-(a link whose origin is the end effector), on a scratch MjData, joint limits clamped at each step.
+Inverse kinematics uses MuJoCo's own Jacobians (`morsec.kits.ik`): damped least squares on `mj_jac` of the
+IK target's body (a link whose origin is the end effector), on a scratch MjData, joint limits clamped at
+each step.
 Subclasses (KukaLWR) set `xacro`, `mount_body` (where appended components go), `ik_targets` and
 `joint_armature`.
 """
@@ -27,13 +28,12 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, async_service, service
-from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
-from morsec.runtime.robot import JointServos
+from morsec.kits.geometry import euler_to_quat, quat_to_matrix
+from morsec.kits.ik import InverseKinematics, rotation_error, slerp
+from morsec.kits.servos import JointServos
 
 log = logging.getLogger("morsec.actuators.armature")
 
-IK_DAMPING = 0.02  # damped least squares: lambda, m (rad)
-IK_MAX_STEP = 0.2  # rad (m) per iteration and joint
 IK_GIVE_UP_S = 2.0  # after the end of a move_IK_target, seconds to reach the target before FAILED
 
 
@@ -88,7 +88,7 @@ class Armature(Actuator):
             body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/{target}")
             if body >= 0:
                 self._ik_bodies[target] = body
-        self._scratch = mujoco.MjData(m)
+        self._ik = InverseKinematics(m, self.servos)
         self.servos.command(q)
 
     def reset(self):
@@ -352,70 +352,11 @@ class Armature(Actuator):
     def solve_ik(self, body: int, pos, rot=None, start=None, iterations: int = 200,
                  restarts: int = 0) -> tuple[np.ndarray, float, float]:
         """Joint values (within the limits) putting body `body`'s origin at `pos` (and its frame at `rot`),
-        from `start` (default: the current joints): damped least squares on MuJoCo's Jacobian, joints at a
-        limit that the step would push further left out of the step. If that does not reach the target,
-        up to `restarts` more tries from the zero pose and from fixed pseudo-random poses (deterministic).
-        Returns (joints, remaining distance m, remaining angle rad) of the best try."""
+        from `start` (default: the current joints), within the tolerances: `morsec.kits.ik`. Returns
+        (joints, remaining distance m, remaining angle rad)."""
         p = self.properties
-        best = None
-        seeds = np.random.default_rng(0)
-        first = np.array(self.servos.positions() if start is None else start, dtype=float)
-        for attempt in range(restarts + 1):
-            if attempt == 0:
-                q0 = first
-            elif attempt == 1:
-                q0 = self.servos.clamp(np.zeros_like(first))
-            else:
-                lo = np.where(self.servos.limited, self.servos.range[:, 0], -math.pi)
-                hi = np.where(self.servos.limited, self.servos.range[:, 1], math.pi)
-                q0 = lo + seeds.random(len(first)) * (hi - lo)
-            q, err_p, err_a = self._dls(body, pos, rot, q0, iterations)
-            score = err_p + err_a * 0.1
-            if best is None or score < best[0]:
-                best = (score, q, err_p, err_a)
-            if err_p <= p.DistanceTolerance / 2 and err_a <= p.AngleTolerance / 2:
-                break
-        return best[1], best[2], best[3]
-
-    def _dls(self, body: int, pos, rot, q, iterations: int) -> tuple[np.ndarray, float, float]:
-        m, d, servos = self.sim.model, self._scratch, self.servos
-        d.qpos[:] = self.sim.data.qpos
-        q = servos.clamp(q)
-        cols = servos.dof
-        jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
-        tol_p, tol_a = self.properties.DistanceTolerance, self.properties.AngleTolerance
-        lo = np.where(servos.limited, servos.range[:, 0], -np.inf)
-        hi = np.where(servos.limited, servos.range[:, 1], np.inf)
-        err_p = err_a = math.inf
-        for _ in range(iterations):
-            d.qpos[servos.qpos] = q
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            ep = np.asarray(pos, dtype=float) - d.xpos[body]
-            err_p = float(np.linalg.norm(ep))
-            if rot is not None:
-                er = _rotation_error(np.asarray(rot), d.xmat[body].reshape(3, 3))
-                err_a = float(np.linalg.norm(er))
-                err = np.concatenate([ep, er])
-            else:
-                err, err_a = ep, 0.0
-            if err_p < tol_p / 20 and err_a < tol_a / 20:
-                break
-            mujoco.mj_jacBody(m, d, jacp, jacr, body)
-            jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], jacr[:, cols]])
-            free = np.ones(len(q), dtype=bool)
-            for _ in range(len(q)):  # joints stuck at a limit leave the step
-                j = jac * free
-                dq = j.T @ np.linalg.solve(j @ j.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
-                stuck = free & (((q <= lo + 1e-9) & (dq < 0)) | ((q >= hi - 1e-9) & (dq > 0)))
-                if not stuck.any():
-                    break
-                free &= ~stuck
-            biggest = float(np.max(np.abs(dq))) if len(dq) else 0.0
-            if biggest > IK_MAX_STEP:
-                dq *= IK_MAX_STEP / biggest
-            q = servos.clamp(q + dq)
-        return q, err_p, err_a
+        return self._ik.solve(self.sim.data, body, pos, rot, tolerances=(p.DistanceTolerance, p.AngleTolerance),
+                              start=start, iterations=iterations, restarts=restarts)
 
     @service
     def place_IK_target(self, name: str, translation: list[float], euler_rotation: list[float] | None = None,
@@ -452,7 +393,7 @@ class Armature(Actuator):
         rspeed = abs(float(radial_speed)) if radial_speed else p.IKRotationSpeed
         duration = float(np.linalg.norm(goal_pos - pos)) / lspeed
         if goal_rot is not None:
-            duration = max(duration, float(np.linalg.norm(_rotation_error(goal_rot, rot))) / rspeed)
+            duration = max(duration, float(np.linalg.norm(rotation_error(goal_rot, rot))) / rspeed)
         self._trajectory = None
         self.joint_speed.clear()
         self._ik_move = {"name": name, "body": body, "pos": pos, "rot": rot, "goal_pos": goal_pos,
@@ -463,7 +404,7 @@ class Armature(Actuator):
         elapsed = self.sim.clock.now() - move["t0"]
         s = min(1.0, elapsed / move["duration"]) if move["duration"] > 0 else 1.0
         pos = move["pos"] + s * (move["goal_pos"] - move["pos"])
-        rot = None if move["goal_rot"] is None else _slerp(move["rot"], move["goal_rot"], s)
+        rot = None if move["goal_rot"] is None else slerp(move["rot"], move["goal_rot"], s)
         q, _, _ = self.solve_ik(move["body"], pos, rot, start=servos.setpoint, iterations=30)
         servos.command(q, (q - servos.setpoint) * self.frequency)
         self._set_targets(q)
@@ -472,7 +413,7 @@ class Armature(Actuator):
         body = move["body"]
         err_p = float(np.linalg.norm(move["goal_pos"] - d.xpos[body]))
         err_a = 0.0 if move["goal_rot"] is None else \
-            float(np.linalg.norm(_rotation_error(move["goal_rot"], d.xmat[body].reshape(3, 3))))
+            float(np.linalg.norm(rotation_error(move["goal_rot"], d.xmat[body].reshape(3, 3))))
         p = self.properties
         settled = bool(np.all(np.abs(d.qvel[servos.dof]) < 10 * self._tolerances()))
         if err_p < p.DistanceTolerance and err_a < p.AngleTolerance and settled:
@@ -490,27 +431,6 @@ class Armature(Actuator):
         q = self.servos.positions()
         self._set_targets(q)
         self.servos.command(q)
-
-
-def _rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
-    """Rotation vector (world frame, rad) turning `current` into `target`."""
-    quat = matrix_to_quat(np.asarray(target) @ np.asarray(current).T)
-    vel = np.zeros(3)
-    mujoco.mju_quat2Vel(vel, quat, 1.0)
-    return vel
-
-
-def _slerp(r0: np.ndarray, r1: np.ndarray, s: float) -> np.ndarray:
-    q0, q1 = matrix_to_quat(r0), matrix_to_quat(r1)
-    dot = float(q0 @ q1)
-    if dot < 0:
-        q1, dot = -q1, -dot
-    if dot > 0.9995:
-        q = q0 + s * (q1 - q0)
-    else:
-        theta = math.acos(dot)
-        q = (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
-    return quat_to_matrix(q / np.linalg.norm(q))
 
 
 COMPONENT = Armature

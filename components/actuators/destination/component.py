@@ -1,12 +1,12 @@
 from __future__ import annotations
 
-import math
 from typing import Literal
 
 import numpy as np
 from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.modifiers.coordinates import POSITION_IN
 
 
 class Destination(Actuator):
@@ -18,6 +18,7 @@ class Destination(Actuator):
     short_descr = "Move the robot in a straight line to a goal point"
     builder_name = "Destination"
     frequency = 60.0
+    modifiers = POSITION_IN
     base_servo = True
 
     class Properties(ComponentProperties):

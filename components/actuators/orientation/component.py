@@ -8,6 +8,7 @@ from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField
 from morsec.kits.geometry import euler_to_quat, normalize_angle, quat_to_matrix
+from morsec.modifiers.coordinates import AnglesFromNED
 
 
 def _no_default(schema: dict) -> None:
@@ -22,6 +23,7 @@ class Orientation(Actuator):
     short_descr = "Set the orientation of the robot"
     builder_name = "Orientation"
     frequency = 60.0
+    modifiers = {"ned": AnglesFromNED}
     base_servo = True
 
     class Properties(ComponentProperties):

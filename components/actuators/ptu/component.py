@@ -14,7 +14,7 @@ from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
 from morsec.kits.geometry import normalize_angle
-from morsec.runtime.robot import JointServos
+from morsec.kits.servos import JointServos
 
 
 class PTU(Actuator):

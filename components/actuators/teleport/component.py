@@ -1,7 +1,8 @@
 import numpy as np
 
 from morsec.component import Actuator, DataField, service
-from morsec.kits.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, quat_to_matrix
+from morsec.modifiers.coordinates import POSITION_IN
 
 
 class Teleport(Actuator):
@@ -11,6 +12,7 @@ class Teleport(Actuator):
     short_descr = "Place the robot at a pose"
     builder_name = "Teleport"
     frequency = 60.0
+    modifiers = {name: m for name, m in POSITION_IN.items() if name != "utm"}  # no utm, as MORSE
     data = (
         DataField("x", 0.0, "float", "x of the actuator, world frame, m (default: initial pose)"),
         DataField("y", 0.0, "float", "y, m"),

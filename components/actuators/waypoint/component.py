@@ -31,6 +31,7 @@ from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
 from morsec.kits.geometry import normalize_angle
+from morsec.modifiers.coordinates import POSITION_IN
 
 log = logging.getLogger("morsec.actuators.waypoint")
 
@@ -53,6 +54,7 @@ class Waypoint(Actuator):
     short_descr = "Drive the robot to a goal point, turning then going forward"
     builder_name = "Waypoint"
     frequency = 60.0
+    modifiers = POSITION_IN
     base_servo = True
 
     class Properties(ComponentProperties):

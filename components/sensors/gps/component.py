@@ -4,6 +4,8 @@ import time
 import numpy as np
 
 from morsec.component import DataField, Level, Sensor
+from morsec.modifiers.coordinates import POSITION_OUT
+from morsec.modifiers.noise import PositionNoise
 
 RAW = ("raw", "extended")
 STILL = 1e-6  # m/s: below this horizontal speed the heading is not observable
@@ -18,6 +20,7 @@ class GPS(Sensor):
     short_descr = "GPS: scene or geodetic position, velocity, date, time and heading"
     builder_name = "GPS"
     frequency = 60.0
+    modifiers = {"noise": PositionNoise, **POSITION_OUT}
     levels = (
         Level("simple", None, "position of the sensor in the scene frame", default=True),
         Level("raw", "RawGPS", "geodetic position (WGS84) and East-North-Up velocity"),

@@ -1,4 +1,6 @@
 from morsec.component import DataField, Sensor
+from morsec.modifiers.coordinates import AnglesToNED
+from morsec.modifiers.noise import OrientationNoise
 
 
 class Gyroscope(Sensor):
@@ -9,6 +11,7 @@ class Gyroscope(Sensor):
     short_descr = "Yaw, pitch and roll of the sensor, world frame"
     builder_name = "Gyroscope"
     frequency = 60.0
+    modifiers = {"noise": OrientationNoise, "ned": AnglesToNED}
     data = (
         DataField("yaw", 0.0, "float", "rotation about the world z axis, rad in [-pi, pi)"),
         DataField("pitch", 0.0, "float", "rotation about the y axis, rad in [-pi/2, pi/2]"),

@@ -10,6 +10,7 @@ from pydantic import Field
 from morsec.component import ComponentProperties, DataField, Sensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 from morsec.kits.geometry import matrix_to_quat, transpose_apply
+from morsec.modifiers.noise import IMUNoise
 
 log = logging.getLogger("morsec.sensors.imu")
 
@@ -32,6 +33,7 @@ class IMU(Sensor):
     short_descr = "Angular velocity, linear acceleration (with gravity) and magnetic field, IMU frame"
     builder_name = "IMU"
     frequency = 60.0
+    modifiers = {"noise": IMUNoise, "imunoise": IMUNoise}
 
     class Properties(ComponentProperties):
         ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(

@@ -2,6 +2,7 @@ import math
 
 from morsec.component import DataField, Level, Sensor
 from morsec.kits.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
+from morsec.modifiers.noise import OdometryNoise, PoseNoise
 
 
 
@@ -12,6 +13,7 @@ class Odometry(Sensor):
     short_descr = "Odometry: distance, deltas or integrated pose and velocities"
     builder_name = "Odometry"
     frequency = 60.0
+    modifiers = {"noise": PoseNoise, "posenoise": PoseNoise, "odometrynoise": OdometryNoise}
     levels = (
         Level("raw", "RawOdometry", "distance travelled since the previous tick"),
         Level("differential", None, "position and angle deltas since the previous tick"),

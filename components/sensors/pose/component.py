@@ -1,5 +1,7 @@
 from morsec.component import DataField, Sensor
 from morsec.kits.geometry import euler_of_xmat
+from morsec.modifiers.coordinates import POSITION_OUT
+from morsec.modifiers.noise import PoseNoise
 
 
 class Pose(Sensor):
@@ -9,6 +11,7 @@ class Pose(Sensor):
     short_descr = "Position and orientation of the sensor, world frame"
     builder_name = "Pose"
     frequency = 60.0
+    modifiers = {"noise": PoseNoise, "posenoise": PoseNoise, **POSITION_OUT}
     data = (
         DataField("x", 0.0, "float", "x coordinate of the sensor, world frame, m"),
         DataField("y", 0.0, "float", "y coordinate of the sensor, world frame, m"),

@@ -17,13 +17,9 @@ from morsec.frontends.builder import session as _session
 from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
 from morsec.component.catalogue import camel_case, project_root
 from morsec.errors import did_you_mean, one_of
+from morsec.modifiers.registry import MODIFIERS
 from morsec.scene import models
 
-# modifier module names in MORSE's `morse.modifiers` package -> morsec modifier names
-_MODIFIER_MODULES = {
-    "ned": "ned", "utm": "utm", "ecef": "ecef", "geodetic": "geodetic", "geocentric": "geocentric", "feet": "feet",
-    "pose_noise": "posenoise", "imu_noise": "imunoise", "odometry_noise": "odometrynoise", "noise": "noise",
-}
 _PHYSICS_TYPES = {"STATIC": "static", "DYNAMIC": "dynamic", "RIGID_BODY": "rigid_body", "NO_COLLISION": "no_collision"}
 _INTERNAL_PROPERTIES = ("Component_Tag", "Robot_Tag", "External_Robot_Tag", "Zone_Tag")
 
@@ -369,12 +365,13 @@ class AbstractComponent:
     def _modifier_from_classpath(self, classpath: str) -> str:
         parts = str(classpath).split(".")
         module = parts[-2] if len(parts) > 1 else parts[0]
-        if module in _MODIFIER_MODULES:
-            return _MODIFIER_MODULES[module]
+        # MORSE's modules in `morse.modifiers` are the registry's names with underscores: pose_noise -> posenoise
+        if module.replace("_", "") in MODIFIERS:
+            return module.replace("_", "")
         if "noise" in parts[-1].lower():
             return "noise"
         raise self._session.error(f"alter(classpath={classpath!r}): no morsec modifier for this class; "
-                                  f"modifiers: {one_of(models.MODIFIERS)}")
+                                  f"modifiers: {one_of(MODIFIERS)}")
 
     def alter(self, modifier_name=None, classpath=None, direction=None, **kwargs):
         """Add a modifier (Noise, NED, UTM, ...) with its parameters."""

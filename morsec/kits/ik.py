@@ -1,0 +1,124 @@
+"""Inverse kinematics for a component's own joints (an arm): MuJoCo's Jacobians, damped least squares.
+
+    ik = InverseKinematics(sim.model, servos)           # servos: a morsec.kits.servos.JointServos
+    q, dist, angle = ik.solve(sim.data, body, pos, rot, tolerances=(0.005, 0.01), restarts=8)
+
+`solve` puts the origin of `body` (a link of the arm) at `pos` (and its frame at `rot`), world frame: damped
+least squares on `mj_jacBody` of that body, on a scratch MjData (the simulation's own is never touched),
+the joints held within their limits. It returns joint values (root to tip, as `servos.names`) and how far
+from the target they leave the body."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+from morsec.kits.geometry import matrix_to_quat, quat_to_matrix
+
+IK_DAMPING = 0.02  # damped least squares: lambda, m (rad)
+IK_MAX_STEP = 0.2  # rad (m) per iteration and joint
+
+
+class InverseKinematics:
+    """Inverse kinematics of the joints of `servos` (a JointServos, or anything with its `qpos`, `dof`,
+    `limited`, `range` and `clamp`) in `model`."""
+
+    def __init__(self, model, servos):
+        self.model = model
+        self.servos = servos
+        self.scratch = mujoco.MjData(model)
+
+    def solve(self, data, body: int, pos, rot=None, *, tolerances: tuple[float, float], start=None,
+              iterations: int = 200, restarts: int = 0) -> tuple[np.ndarray, float, float]:
+        """Joint values (within the limits) putting body `body`'s origin at `pos` (and its frame at `rot`),
+        from `start` (default: the joints in `data`, the simulation's MjData, which also gives the rest of
+        the model: the robot's pose, other joints): damped least squares on MuJoCo's Jacobian, joints at a
+        limit that the step would push further left out of the step. If that does not reach the target
+        within half the `tolerances` (m, rad), up to `restarts` more tries from the zero pose and from fixed
+        pseudo-random poses (deterministic). Returns (joints, remaining distance m, remaining angle rad) of
+        the best try."""
+        servos = self.servos
+        tol_p, tol_a = tolerances
+        best = None
+        seeds = np.random.default_rng(0)
+        first = np.array(data.qpos[servos.qpos] if start is None else start, dtype=float)
+        for attempt in range(restarts + 1):
+            if attempt == 0:
+                q0 = first
+            elif attempt == 1:
+                q0 = servos.clamp(np.zeros_like(first))
+            else:
+                lo = np.where(servos.limited, servos.range[:, 0], -math.pi)
+                hi = np.where(servos.limited, servos.range[:, 1], math.pi)
+                q0 = lo + seeds.random(len(first)) * (hi - lo)
+            q, err_p, err_a = self._dls(data, body, pos, rot, q0, iterations, tol_p, tol_a)
+            score = err_p + err_a * 0.1
+            if best is None or score < best[0]:
+                best = (score, q, err_p, err_a)
+            if err_p <= tol_p / 2 and err_a <= tol_a / 2:
+                break
+        return best[1], best[2], best[3]
+
+    def _dls(self, data, body: int, pos, rot, q, iterations: int, tol_p: float,
+             tol_a: float) -> tuple[np.ndarray, float, float]:
+        m, d, servos = self.model, self.scratch, self.servos
+        d.qpos[:] = data.qpos
+        q = servos.clamp(q)
+        cols = servos.dof
+        jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+        lo = np.where(servos.limited, servos.range[:, 0], -np.inf)
+        hi = np.where(servos.limited, servos.range[:, 1], np.inf)
+        err_p = err_a = math.inf
+        for _ in range(iterations):
+            d.qpos[servos.qpos] = q
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            ep = np.asarray(pos, dtype=float) - d.xpos[body]
+            err_p = float(np.linalg.norm(ep))
+            if rot is not None:
+                er = rotation_error(np.asarray(rot), d.xmat[body].reshape(3, 3))
+                err_a = float(np.linalg.norm(er))
+                err = np.concatenate([ep, er])
+            else:
+                err, err_a = ep, 0.0
+            if err_p < tol_p / 20 and err_a < tol_a / 20:
+                break
+            mujoco.mj_jacBody(m, d, jacp, jacr, body)
+            jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], jacr[:, cols]])
+            free = np.ones(len(q), dtype=bool)
+            for _ in range(len(q)):  # joints stuck at a limit leave the step
+                j = jac * free
+                dq = j.T @ np.linalg.solve(j @ j.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
+                stuck = free & (((q <= lo + 1e-9) & (dq < 0)) | ((q >= hi - 1e-9) & (dq > 0)))
+                if not stuck.any():
+                    break
+                free &= ~stuck
+            biggest = float(np.max(np.abs(dq))) if len(dq) else 0.0
+            if biggest > IK_MAX_STEP:
+                dq *= IK_MAX_STEP / biggest
+            q = servos.clamp(q + dq)
+        return q, err_p, err_a
+
+
+def rotation_error(target: np.ndarray, current: np.ndarray) -> np.ndarray:
+    """Rotation vector (world frame, rad) turning `current` into `target`."""
+    quat = matrix_to_quat(np.asarray(target) @ np.asarray(current).T)
+    vel = np.zeros(3)
+    mujoco.mju_quat2Vel(vel, quat, 1.0)
+    return vel
+
+
+def slerp(r0: np.ndarray, r1: np.ndarray, s: float) -> np.ndarray:
+    """The rotation matrix a fraction `s` (0..1) of the way from `r0` to `r1`, along the shortest arc."""
+    q0, q1 = matrix_to_quat(r0), matrix_to_quat(r1)
+    dot = float(q0 @ q1)
+    if dot < 0:
+        q1, dot = -q1, -dot
+    if dot > 0.9995:
+        q = q0 + s * (q1 - q0)
+    else:
+        theta = math.acos(dot)
+        q = (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
+    return quat_to_matrix(q / np.linalg.norm(q))

@@ -1,0 +1,75 @@
+"""Joint servos for components with moving parts of their own (a pan-tilt unit, an arm): the hinge and
+slide joints of the component's model, each held by a MuJoCo position servo, and the setpoints sent to
+them with velocity and gravity feed-forward."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from morsec.kits import mjcf_names
+
+
+class JointServos:
+    """The hinge and slide joints of a component's own model (a pan-tilt unit, an arm: joints named
+    `<fqn>/<joint>`), each held by the MuJoCo position actuator of the same name (the component's
+    actuator.xml.j2). `command` sets the servos' setpoints; the control sent to MuJoCo adds velocity and
+    gravity feed-forward, (kv * velocity + qfrc_bias) / kp, so that a joint follows a moving setpoint
+    without lag and does not sag under the weight of the links it carries."""
+
+    def __init__(self, sim, prefix: str):
+        m = sim.model
+        self.sim = sim
+        self.prefix = prefix
+        ids = [j for j in range(m.njnt)
+               if mjcf_names.belongs_to(mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) or "", prefix)
+               and int(m.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))]
+        self.names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j)[len(mjcf_names.part(prefix, "")):]
+                      for j in ids]
+        self.joints = np.array(ids, dtype=int)
+        self.qpos = m.jnt_qposadr[self.joints].astype(int)
+        self.dof = m.jnt_dofadr[self.joints].astype(int)
+        self.prismatic = m.jnt_type[self.joints] == int(mujoco.mjtJoint.mjJNT_SLIDE)
+        self.limited = m.jnt_limited[self.joints].astype(bool)
+        self.range = m.jnt_range[self.joints].copy()
+        acts = []
+        for name in self.names:
+            act = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.part(prefix, name))
+            if act < 0:
+                raise ValueError(f"joint {name!r} of {prefix} has no position servo named {mjcf_names.part(prefix, name)} in "
+                                 "scene.xml (the component's actuator.xml.j2): rebuild the scene")
+            acts.append(act)
+        self.actuators = np.array(acts, dtype=int)
+        self.kp = m.actuator_gainprm[self.actuators, 0].copy()
+        self.kv = -m.actuator_biasprm[self.actuators, 2].copy()
+        self.index = {name: i for i, name in enumerate(self.names)}
+        self.setpoint = self.positions()
+
+    def positions(self) -> np.ndarray:
+        return self.sim.data.qpos[self.qpos].copy()
+
+    def clamp(self, values) -> np.ndarray:
+        values = np.asarray(values, dtype=float)
+        return np.where(self.limited, np.clip(values, self.range[:, 0], self.range[:, 1]), values)
+
+    def command(self, setpoint, velocity=None) -> None:
+        """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given)."""
+        d = self.sim.data
+        self.setpoint = np.asarray(setpoint, dtype=float).copy()
+        ff = d.qfrc_bias[self.dof].copy()
+        if velocity is not None:
+            ff += self.kv * np.asarray(velocity, dtype=float)
+        d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)
+
+    def teleport(self, values, which=None) -> None:
+        """Put joints at `values` at once, at rest, and hold them there: all of them, or those of the
+        indices `which` (`values` then gives theirs, in that order)."""
+        d = self.sim.data
+        which = np.arange(len(self.names)) if which is None else np.asarray(which, dtype=int)
+        values = np.asarray(values, dtype=float)
+        d.qpos[self.qpos[which]] = values
+        d.qvel[self.dof[which]] = 0.0
+        mujoco.mj_kinematics(self.sim.model, d)
+        setpoint = self.setpoint.copy()
+        setpoint[which] = values
+        self.command(setpoint)
