@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 import re
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -83,7 +84,13 @@ def scene_for(kind: str, cls, cat: Catalogue) -> str:
             f"      - {{name: subject, type: {cls.id}, translate: [0.3, 0, 0.5]}}\n")
 
 
-def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None) -> list[Path]:
+def picture_count(cat: Catalogue, only: set[str] | None = None) -> int:
+    return sum(1 for kind in KINDS for cid in cat.ids(kind) if not only or cid in only)
+
+
+def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None,
+                    advance: Callable[[], None] | None = None) -> list[Path]:
+    """One picture per component (`advance` is called after each, for a progress bar)."""
     import mujoco
 
     from morsec.app.project import build_scene
@@ -113,6 +120,8 @@ def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None
                 out.parent.mkdir(parents=True, exist_ok=True)
                 write_png(out, np.asarray(image))
                 written.append(out)
+                if advance is not None:
+                    advance()
     return written
 
 

@@ -7,7 +7,7 @@ from typing import Annotated, Optional
 
 import typer
 
-from morsec.cli.common import console, fail, on_terminal
+from morsec.cli.common import console, err_console, fail, on_terminal
 from morsec.errors import MorsecError
 
 
@@ -39,8 +39,12 @@ def docs(
         cat = load_catalogue()
         written = write_docs(out, cat)
         if pictures:
-            from morsec.app.gallery import render_pictures
-            written += render_pictures(cat, out)
+            from rich.progress import Progress
+
+            from morsec.app.gallery import picture_count, render_pictures
+            with Progress(console=err_console, transient=True, disable=not err_console.is_terminal) as progress:
+                task = progress.add_task("rendering pictures", total=picture_count(cat))
+                written += render_pictures(cat, out, advance=lambda: progress.advance(task))
         typer.echo(f"wrote {len(written)} files in {out}")
     except MorsecError as err:
         fail(err)

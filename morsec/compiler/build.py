@@ -23,10 +23,10 @@ from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import assign_services, assign_streams, middleware_view
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
-from morsec.component.catalogue import Catalogue, is_builtin, level_class
+from morsec.component.catalogue import Catalogue, is_builtin, level_class, modifier_class
 from morsec.errors import SceneError, yaml_path
 from morsec.kits.mjcf_names import belongs_to
-from morsec.modifiers.registry import modifier_class
+
 from morsec.scene.manifest import (BUILTIN_ROOT, FORMAT_VERSION, MANIFEST, ComponentEntry, ComponentRef, Loop,
                                    Manifest, ModifierEntry, RobotEntry)
 from morsec.scene.walk import walk_components

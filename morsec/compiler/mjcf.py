@@ -23,6 +23,7 @@ from morsec.kits import mjcf_names
 from morsec.kits.mjcf_names import part
 from morsec.resources import data_dir
 from morsec.scene.naming import join
+from morsec.scene.walk import walk_children, walk_components
 from morsec.compiler.assets import Assets, asset_dir
 from morsec.compiler.urdf import Link, expand_xacro, read_urdf
 
@@ -95,7 +96,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     robots = [render(env, "mjcf/robot.xml.j2", robot=_robot_body(r, cat, env, robot_trees[r.name]))
               for r in scene.robots]
     objects = [_object(o, cat, env) for o in scene.objects]
-    servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r.components, cat)]
+    servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r, cat)]
     sections = _component_sections(scene, cat, env, robot_trees)
     zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
 
@@ -148,17 +149,12 @@ def _class_assets(cls, cat: Catalogue, env, assets: Assets, context: dict) -> st
 def _used_classes(scene, cat: Catalogue) -> list:
     """Every robot, device and prop class the scene uses, once each, in a stable order."""
     found: dict[str, object] = {}
-
-    def visit(comps):
-        for c in comps:
-            cls = cat.devices()[c.type]
-            found.setdefault(f"{cls.kind}/{cls.id}", cls)
-            visit(c.components)
-
     for robot in scene.robots:
         cls = cat.get("robots", robot.type)
         found.setdefault(f"robot/{cls.id}", cls)
-        visit(robot.components)
+    for placed in walk_components(scene):
+        cls = cat.devices()[placed.component.type]
+        found.setdefault(f"{cls.kind}/{cls.id}", cls)
     for obj in scene.objects:
         cls = cat.get("props", obj.type)
         found.setdefault(f"prop/{cls.id}", cls)
@@ -197,8 +193,7 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
     devices = cat.devices()
     out: dict[str, list] = {t: [] for t in SECTION_TEMPLATES}
 
-    def visit(comp, parent: str, robot):
-        fqn = join(parent, comp.name)
+    for robot, comp, fqn, _, _ in walk_components(scene):
         cls = devices[comp.type]
         tree = robot_trees[robot.name]
         joints = {link.joint["name"]: part(robot.name, link.joint["name"]) for link in tree.walk() if link.joint}
@@ -215,18 +210,13 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
                                             joints=joints, links=links, own_joints=own_joints,
                                             objects=scene.objects, properties=comp.properties,
                                             component=comp))
-        for child in comp.components:
-            visit(child, fqn, robot)
-
-    for robot in scene.robots:
-        for comp in robot.components:
-            visit(comp, robot.name, robot)
     return out
 
 
-def _needs_servo(components, cat: Catalogue) -> bool:
+def _needs_servo(robot, cat: Catalogue) -> bool:
     devices = cat.devices()
-    return any(getattr(devices[c.type], "base_servo", False) or _needs_servo(c.components, cat) for c in components)
+    return any(getattr(devices[placed.component.type], "base_servo", False)
+               for placed in walk_children(robot, robot.components, robot.name, ()))
 
 
 def _servo(robot, cat: Catalogue, tree: Link) -> dict:
@@ -313,18 +303,11 @@ def _mounts(scene, cat: Catalogue) -> dict[str, str]:
     camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link."""
     devices = cat.devices()
     out: dict[str, str] = {}
-
-    def visit(comps, parent: str):
-        for comp in comps:
-            fqn = join(parent, comp.name)
-            mount = getattr(devices[comp.type], "mount_body", None)
-            if mount:
-                for child in comp.components:
-                    out[join(fqn, child.name)] = part(fqn, mount)
-            visit(comp.components, fqn)
-
-    for robot in scene.robots:
-        visit(robot.components, robot.name)
+    for _, comp, fqn, _, _ in walk_components(scene):
+        mount = getattr(devices[comp.type], "mount_body", None)
+        if mount:
+            for child in comp.components:
+                out[join(fqn, child.name)] = part(fqn, mount)
     return out
 
 
