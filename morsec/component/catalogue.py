@@ -19,7 +19,7 @@ from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Literal, get_args, get_origin
 
-from morsec.component.contract import KINDS, Component, ComponentProperties, Device
+from morsec.component.contract import KINDS, Component, ComponentProperties, DataField, Device
 from morsec.errors import MorsecError, did_you_mean
 from morsec.resources import data_dir
 
@@ -166,6 +166,7 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     if cls.builder_name is None:
         cls.builder_name = camel_case(cid)
     check_properties(cls.Properties, folder)
+    check_data(cls, folder)
     return cls
 
 
@@ -193,6 +194,16 @@ def check_properties(model: type[ComponentProperties], folder: Path) -> None:
         if not _basic(info.annotation):
             raise MorsecError(f"{folder / 'component.py'}: property {name!r} must be bool, int, float or str "
                               f"(got {info.annotation!r}), as MORSE's add_property")
+
+
+def check_data(cls: type[Component], folder: Path) -> None:
+    """Data fields are DataFields (their types were checked when they were made: see morsec.component.fields)."""
+    message = getattr(cls, "message_fields", None) or ()
+    extra = getattr(cls, "extra_field", None)
+    for entry in (*getattr(cls, "data", ()), *message, *((extra,) if extra is not None else ())):
+        if not isinstance(entry, DataField):
+            raise MorsecError(f"{folder / 'component.py'}: data fields must be DataField(name, default, type, doc), "
+                              f"got {entry!r}")
 
 
 def level_class(cls: type[Device], level: str | None) -> type[Device]:

@@ -7,7 +7,7 @@ from pydantic import Field
 from morsec.component import ComponentProperties, DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat
 
-VEC3 = "vec3<float>"
+VEC3 = "vec3"
 
 
 class Accelerometer(Sensor):

@@ -29,9 +29,9 @@ class Attitude(Sensor):
             "Automatic: Velocity for a robot moving under physics, Position otherwise")
 
     data = (
-        DataField("rotation", [0.0, 0.0, 0.0], "Euler angles (XYZ)",
+        DataField("rotation", [0.0, 0.0, 0.0], "vec3",
                   "roll, pitch, yaw of the sensor, rad (yaw from north with UseAngleAgainstNorth)"),
-        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the sensor's x, y, z axes, rad/s"),
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the sensor's x, y, z axes, rad/s"),
     )
 
     def start(self):

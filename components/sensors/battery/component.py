@@ -20,7 +20,7 @@ class Battery(Sensor):
 
     data = (
         DataField("charge", 100.0, "float", "battery charge, percent (starts full)"),
-        DataField("status", "Charged", "string", "Charged, Charging or Discharging"),
+        DataField("status", "Charged", "str", "Charged, Charging or Discharging"),
     )
 
     def start(self):

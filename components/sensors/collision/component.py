@@ -20,7 +20,7 @@ class Collision(Sensor):
 
     data = (
         DataField("collision", False, "bool", "true when the robot touches something"),
-        DataField("objects", "", "string", "names of what the robot touches, comma-separated, sorted"),
+        DataField("objects", "", "str", "names of what the robot touches, comma-separated, sorted"),
     )
 
     def start(self):

@@ -30,12 +30,12 @@ class DepthCamera(VideoCamera):
                                       "something")
 
     data = (
-        DataField("points", None, "float32 points",
+        DataField("points", None, "base64",
                   "nb_points x 3 float32: x, y, z of each point in the camera's optical frame (x right, y down, "
                   "z forward), m, row by row (kept rows in keep_list order), left to right; on the wire base64 "
                   "of its nb_points * 12 bytes"),
         DataField("nb_points", 0, "int", "number of points (at most cam_width * number of kept rows)"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
+        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
                   "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
     )
 

@@ -19,11 +19,11 @@ class DepthVideoCamera(VideoCamera):
     Properties = DepthCameraProperties
 
     data = (
-        DataField("image", None, "float32 depth image",
+        DataField("image", None, "base64",
                   "cam_height x cam_width float32 depth along the optical axis, m (cam_far: nothing seen), first "
                   "row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height * 4 "
                   "bytes"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
+        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
                   "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
     )
 

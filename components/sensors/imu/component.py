@@ -39,10 +39,10 @@ class IMU(Sensor):
             "Automatic: Velocity for a robot moving under physics, Position otherwise")
 
     data = (
-        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the IMU's x, y, z axes, rad/s"),
-        DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3<float>",
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the IMU's x, y, z axes, rad/s"),
+        DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3",
                   "specific force along the IMU's x, y, z axes, gravity included (+9.81 on z at rest), m/s^2"),
-        DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3<float>",
+        DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3",
                   "Earth's magnetic field (World Magnetic Model) in the IMU frame, nT; zero when the "
                   "environment has no geodetic properties"),
     )

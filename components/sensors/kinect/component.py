@@ -37,9 +37,9 @@ class Kinect(CameraSensor):
             return self
 
     data = (
-        DataField("rgb", {"image": None, "intrinsic_matrix": IDENTITY}, "video camera data",
+        DataField("rgb", {"image": None, "intrinsic_matrix": IDENTITY}, "dict",
                   "the RGB camera: image (cam_height x cam_width x 4 uint8 RGBA) and intrinsic_matrix"),
-        DataField("depth", {"image": None, "intrinsic_matrix": IDENTITY}, "depth camera data",
+        DataField("depth", {"image": None, "intrinsic_matrix": IDENTITY}, "dict",
                   "the depth camera: image (cam_height x cam_width float32, m along the optical axis; depth_far "
                   "where nothing was seen) and intrinsic_matrix"),
     )

@@ -18,9 +18,9 @@ class Proximity(Sensor):
         Track: str = Field("Robot_Tag", description="property the detected objects carry (or their Type)")
 
     data = (
-        DataField("near_objects", {}, "dict", "tracked objects within range: {name: distance from the robot's "
+        DataField("near_objects", {}, "dict[str, float]", "tracked objects within range: {name: distance from the robot's "
                   "origin, m}"),
-        DataField("near_robots", {}, "dict", "deprecated alias of near_objects"),
+        DataField("near_robots", {}, "dict[str, float]", "deprecated alias of near_objects"),
     )
 
     def default_action(self):

@@ -40,11 +40,11 @@ class SemanticCamera(Sensor):
                          "whose Type equals it")
 
     data = (
-        DataField("visible_objects", [], "list of objects",
+        DataField("visible_objects", [], "list[dict]",
                   "the objects seen: {name (Label or object name), description (Description or ''), type (Type or "
                   "''), position [x, y, z] m, orientation {x, y, z, w} quaternion}; world frame, or camera frame "
                   "when relative"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
+        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
                   "intrinsic calibration matrix of the camera, row major, pixels"),
     )
 

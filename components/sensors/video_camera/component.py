@@ -17,10 +17,10 @@ class VideoCamera(CameraSensor):
     Properties = CameraProperties
 
     data = (
-        DataField("image", None, "RGBA image",
+        DataField("image", None, "base64",
                   "the picture: cam_height x cam_width x 4 uint8 (RGBA, alpha 255), first row at the top unless "
                   "Vertical_Flip is false; on the wire base64 of its cam_width * cam_height * 4 bytes"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
+        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
                   "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
     )
 

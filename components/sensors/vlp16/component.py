@@ -41,7 +41,7 @@ class VLP16(CameraSensor):
                                    "optical frame the points are given")
 
     data = (
-        DataField("points", None, "float32 points",
+        DataField("points", None, "base64",
                   "nb_points x 3 float32: x, y, z in the master camera's optical frame (x right, y down, z "
                   "forward), m; camera 0's points first; on the wire base64 of nb_points * 12 bytes"),
         DataField("nb_points", 0, "int", "number of points (3 * cam_width * 16 with keep_resolution)"),
