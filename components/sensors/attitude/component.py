@@ -1,11 +1,10 @@
 import math
-from typing import Literal
 
 import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat, normalize_angle
 
 
@@ -20,13 +19,10 @@ class Attitude(Sensor):
     builder_name = "Attitude"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
+    class Properties(ComputationModeProperties):
         UseAngleAgainstNorth: bool = Field(
             False, description="yaw from true north instead of from the scene's x axis (needs the "
             "environment's longitude, latitude, altitude and optionally angle_against_north)")
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
 
     data = (
         DataField("rotation", [0.0, 0.0, 0.0], "vec3",

@@ -1,13 +1,11 @@
 import datetime
 import math
 import logging
-from typing import Literal
 
 import mujoco
 import numpy as np
-from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 from morsec.kits.geometry import matrix_to_quat, transpose_apply
 
@@ -33,10 +31,8 @@ class IMU(Sensor):
     builder_name = "IMU"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+    class Properties(ComputationModeProperties):
+        pass
 
     data = (
         DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the IMU's x, y, z axes, rad/s"),
