@@ -43,14 +43,26 @@ def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to vali
         raise typer.Exit(2)
 
 
-def schema() -> None:
-    """Print the JSON Schema of a scene, with every catalogue component's own properties."""
+def schema(
+    messages: Annotated[Optional[Path], typer.Option(
+        "--messages", help="instead, write the JSON Schema of each stream's message in this folder "
+        "(<kind>/<id>.schema.json; the repository keeps them in schemas/messages)")] = None,
+) -> None:
+    """Print the JSON Schema of a scene, with every catalogue component's own properties; with --messages,
+    write the schemas of the sensors' and actuators' stream messages instead."""
     from morsec.component.catalogue import load_catalogue
     from morsec.scene.schema import json_schema_text
     try:
+        if messages is not None:
+            from morsec.app.schemas import write_message_schemas
+            written = write_message_schemas(messages, load_catalogue())
+            typer.echo(f"wrote {len(written)} message schemas in {messages}")
+            return
         sys.stdout.write(json_schema_text(load_catalogue()))
     except MorsecError as err:
         fail(err)
+    except OSError as err:
+        fail(MorsecError(f"{messages}: cannot write the message schemas: {err.strerror or err}"))
 
 
 def convert(

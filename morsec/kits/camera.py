@@ -31,7 +31,7 @@ from typing import Any, Callable, ClassVar
 import numpy as np
 from pydantic import Field, model_validator
 
-from morsec.component.contract import ComponentProperties, Sensor
+from morsec.component.contract import ComponentProperties, DataField, Sensor
 from morsec.component.services import async_service, service
 from morsec.errors import MorsecError
 
@@ -68,6 +68,16 @@ def optical_rotation(yaw: float) -> np.ndarray:
     c, s = math.cos(yaw), math.sin(yaw)
     rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     return OPTICAL_TO_COMPONENT.T @ rz @ OPTICAL_TO_COMPONENT
+
+
+# fields of the cameras' socket messages, declared once
+PICTURE_SIZE = (
+    DataField("height", 0, "int", "picture height, pixels (cam_height)"),
+    DataField("width", 0, "int", "picture width, pixels (cam_width)"),
+)
+INTRINSIC_MATRIX = DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
+                             "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], "
+                             "pixels")
 
 
 class CameraProperties(ComponentProperties):

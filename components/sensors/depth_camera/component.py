@@ -3,7 +3,8 @@
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import DepthCameraProperties, b64, depth_points, parse_keep_list, pixel_rays
+from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties, b64, depth_points,
+                                parse_keep_list, pixel_rays)
 from morsec.component.catalogue import component_class
 from morsec.component import DataField
 
@@ -35,9 +36,9 @@ class DepthCamera(VideoCamera):
                   "z forward), m, row by row (kept rows in keep_list order), left to right; on the wire base64 "
                   "of its nb_points * 12 bytes"),
         DataField("nb_points", 0, "int", "number of points (at most cam_width * number of kept rows)"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
-                  "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
+        INTRINSIC_MATRIX,
     )
+    message_fields = (*PICTURE_SIZE, *(f for f in data if f.name != "nb_points"))  # see message()
 
     def start(self) -> None:
         super().start()

@@ -6,8 +6,8 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import (CameraSensor, CameraView, DepthCameraProperties, b64, depth_points, optical_rotation,
-                           parse_keep_list, pixel_rays)
+from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, CameraSensor, CameraView, DepthCameraProperties, b64,
+                           depth_points, optical_rotation, parse_keep_list, pixel_rays)
 from morsec.component import DataField
 
 CAMERAS = 3
@@ -46,6 +46,8 @@ class VLP16(CameraSensor):
                   "forward), m; camera 0's points first; on the wire base64 of nb_points * 12 bytes"),
         DataField("nb_points", 0, "int", "number of points (3 * cam_width * 16 with keep_resolution)"),
     )
+    # see message(): the size and the intrinsic matrix of each camera
+    message_fields = (*PICTURE_SIZE, *(f for f in data if f.name != "nb_points"), INTRINSIC_MATRIX)
 
     def start(self) -> None:
         super().start()
