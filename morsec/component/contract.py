@@ -219,7 +219,8 @@ class Device(Component):
         return res[3:], res[:3]
 
 
-TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s (Unix epoch unless relative time)")
+TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s: since the Unix epoch (the clock "
+                      "starts at the wall-clock time of the start), or since the start with environment.time.relative")
 
 
 class Sensor(Device):

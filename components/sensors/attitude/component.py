@@ -21,12 +21,15 @@ class Attitude(Sensor):
 
     class Properties(ComputationModeProperties):
         UseAngleAgainstNorth: bool = Field(
-            False, description="yaw from true north instead of from the scene's x axis (needs the "
-            "environment's longitude, latitude, altitude and optionally angle_against_north)")
+            False, description="yaw from true north instead of from the scene's x axis, counter-clockwise like "
+            "the scene's yaw (-bearing of the sensor's x axis, in [-pi, pi)): facing north reads 0, facing east "
+            "-pi/2. Needs the environment's longitude, latitude, altitude (and optionally angle_against_north): "
+            "without them the simulation does not start")
 
     data = (
         DataField("rotation", [0.0, 0.0, 0.0], "vec3",
-                  "roll, pitch, yaw of the sensor, rad (yaw from north with UseAngleAgainstNorth)"),
+                  "roll, pitch, yaw of the sensor (XYZ Euler angles, as pose), rad; yaw from north with "
+                  "UseAngleAgainstNorth"),
         DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the sensor's x, y, z axes, rad/s"),
     )
 

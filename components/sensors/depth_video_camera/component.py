@@ -20,9 +20,10 @@ class DepthVideoCamera(VideoCamera):
 
     data = (
         DataField("image", None, "base64",
-                  "cam_height x cam_width float32 depth along the optical axis, m (cam_far: nothing seen), first "
-                  "row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height * 4 "
-                  "bytes"),
+                  "cam_height x cam_width float32 depth along the optical axis (planar: a wall facing the camera "
+                  "reads the same in every pixel), m; cam_far where nothing was drawn between the clip planes; "
+                  "first row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height "
+                  "* 4 bytes (MORSE's buffer)"),
         INTRINSIC_MATRIX,
     )
     message_fields = (*PICTURE_SIZE, *data)

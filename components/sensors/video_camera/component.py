@@ -19,8 +19,9 @@ class VideoCamera(CameraSensor):
 
     data = (
         DataField("image", None, "base64",
-                  "the picture: cam_height x cam_width x 4 uint8 (RGBA, alpha 255), first row at the top unless "
-                  "Vertical_Flip is false; on the wire base64 of its cam_width * cam_height * 4 bytes"),
+                  "the picture: cam_height x cam_width x 4 uint8, R G B A (alpha always 255), row after row: the "
+                  "first row is the top of the picture unless Vertical_Flip is false (OpenGL's order); on the wire "
+                  "base64 of its cam_width * cam_height * 4 bytes (MORSE's buffer)"),
         INTRINSIC_MATRIX,
     )
     message_fields = (*PICTURE_SIZE, *data)
