@@ -2,7 +2,7 @@
 each declared once with its description.
 
 A component inherits a shared property from one of these bases; to give it another default it redeclares
-the name with the new default only, and keeps the base's description:
+the name with the new default only, and keeps the base's description and bounds:
 
     class Properties(RobotProperties):
         GroundRobot: bool = True
@@ -18,7 +18,8 @@ from pydantic import BaseModel, ConfigDict, Field
 class ComponentProperties(BaseModel):
     """Base of every component's properties: basic types only (bool, int, float, str), unknown names rejected.
     Every property has a description (`Field(default, description=...)`); one redeclared without a
-    description (to change its default) keeps the description of the class it comes from."""
+    description (to change its default) keeps the description, and unless it gives its own the bounds
+    (ge, gt, ...), of the class it comes from."""
 
     model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
 
@@ -33,9 +34,11 @@ class ComponentProperties(BaseModel):
                 declared = getattr(base, "__pydantic_fields__", {}).get(name)
                 if declared is not None and declared.description:
                     info.description = declared.description
+                    if not info.metadata and info.annotation == declared.annotation:
+                        info.metadata = list(declared.metadata)
                     inherited = True
                     break
-        if inherited:  # the JSON Schema and the docs read the descriptions from the rebuilt model
+        if inherited:  # validation, the JSON Schema and the docs read them from the rebuilt model
             cls.model_rebuild(force=True)
 
 

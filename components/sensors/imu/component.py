@@ -37,10 +37,13 @@ class IMU(Sensor):
     data = (
         DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the IMU's x, y, z axes, rad/s"),
         DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3",
-                  "specific force along the IMU's x, y, z axes, gravity included (+9.81 on z at rest), m/s^2"),
+                  "specific force along the IMU's x, y, z axes, m/s^2, gravity included: an IMU at rest reads "
+                  "(0, 0, +9.81); mounted off the robot's centre it also feels the centripetal and tangential "
+                  "accelerations of the robot's rotation"),
         DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3",
-                  "Earth's magnetic field (World Magnetic Model) in the IMU frame, nT; zero when the "
-                  "environment has no geodetic properties"),
+                  "Earth's magnetic field in the IMU frame, nT, from the World Magnetic Model (see magnetometer) "
+                  "at the sensor's geodetic position and today's date; (0, 0, 0) when the environment has no "
+                  "longitude/latitude/altitude"),
     )
 
     def start(self):

@@ -67,7 +67,7 @@ def arc_directions(resolution: float, scan_window: float, layers: int = 1, layer
 
 class LaserScannerProperties(ComponentProperties):
     laser_range: float = Field(30.0, gt=0, description="distance from the sensor centre up to which objects are "
-                               "detected, m; can be changed while running")
+                               "detected, m; can be changed while running (set_property)")
     resolution: float = Field(1.0, gt=0, description="angle between two rays of a layer, deg (fixed at start)")
     scan_window: float = Field(180.0, ge=0, le=360, description="full angle covered by a layer, deg (fixed at start)")
     Visible_arc: bool = Field(False, description="MORSE shows the arc in the 3D view; accepted, no effect headless")
