@@ -25,7 +25,8 @@ class Orientation(Actuator):
 
     class Properties(ControlTypeProperties):
         speed: float = Field(math.inf, gt=0, allow_inf_nan=True, json_schema_extra=_no_default,
-                             description="rotation speed, rad/s; default inf: the rotation is instantaneous")
+                             description="rotation speed, rad/s; default inf: the rotation is instantaneous "
+                             "(write .inf in YAML, inf in TOML)")
         tolerance: float = Field(0.02, ge=0, description="angle, rad, under which a goal angle is reached")
 
     data = (
