@@ -52,6 +52,8 @@ def test_create_add_run_drive_and_test(tmp_path):
     assert (project / "scenes/default.yaml").read_text().startswith(
         "# yaml-language-server: $schema=../scene.schema.json")
 
+    check_generated_components_declare_once(project)
+
     (project / "scenes" / "flow.yaml").write_text(SCENE)
     morsec("build", "scenes/flow.yaml", "-o", "build/flow", cwd=project)
     assert (project / "build/flow/manifest.json").is_file()
@@ -75,6 +77,28 @@ def test_create_add_run_drive_and_test(tmp_path):
                             capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "4 passed" in result.stdout  # the default scene's test and the two components' (the actuator has two)
+
+
+def check_generated_components_declare_once(project: Path) -> None:
+    """The scaffold follows the catalogue's rules: descriptions in code, typed fields (a valid message
+    schema), a README of prose without the tables the code declares."""
+    import jsonschema
+
+    from morsec.component.catalogue import load_catalogue
+    from test_component_docs import DECLARED_HEADERS, tables
+    morsec("add", "robot", "rover_x", ".", "--description", "A rover", cwd=project)
+    cat = load_catalogue(project)
+    for kind, cid in (("sensors", "thermal_cam"), ("actuators", "gripper_x"), ("robots", "rover_x")):
+        cls = cat.by_kind[kind][cid]
+        assert all(info.description for info in cls.Properties.model_fields.values()), cid
+        assert all(f.doc for f in getattr(cls, "data", ())), cid
+        for level in [lv.name for lv in getattr(cls, "levels", ())] or [None]:
+            if kind != "robots":
+                jsonschema.Draft202012Validator.check_schema(cls.message_schema(level))
+        readme = (project / "components" / kind / cid / "README.md").read_text(encoding="utf-8")
+        for line, header, _ in tables(readme):
+            assert not {cell.strip("` ").lower() for cell in header} & DECLARED_HEADERS, (cid, line, header)
+    morsec("rm", "robot", "rover_x", ".", "-f", cwd=project)
 
 
 def test_rm_removes_what_add_generated(tmp_path):

@@ -15,7 +15,7 @@ def describe_component(cat: Catalogue, name: str) -> str:
     for kind in KINDS:
         if cat.resolve(kind, name):
             cls = cat.get(kind, name)
-            return f"{cls.short_descr}\n{component_section(kind, cls, None)}"
+            return f"{cls.short_descr}\n{component_section(kind, cls, None, None)}"
     every = [n for kind in KINDS for n in cat.names(kind)]
     raise MorsecError(f"no component {name!r} in the catalogue{did_you_mean(name, every)}")
 

@@ -19,8 +19,11 @@ import yaml
 from pydantic import BaseModel
 from pydantic.fields import FieldInfo
 
+from morsec.app.schemas import MESSAGES_DIR
+from morsec.app.schemas import REGENERATE as MESSAGES_REGENERATE
 from morsec.component.catalogue import Catalogue
 from morsec.component.contract import KINDS, Device
+from morsec.component.fields import FIELD_TYPES
 from morsec.scene.schema import GENERATED_MODULE, json_schema, scene_model
 
 GENERATED_PAGES = ("scene-format.md", "components.md")
@@ -299,8 +302,19 @@ with *.
 """
 
 
+def field_types_section() -> str:
+    """The data field types (morsec.component.fields.FIELD_TYPES), as the stream messages carry them."""
+    out = ["\n<a id=\"data-field-types\"></a>\n\n## Data field types\n\n"
+           "A data field's type is one of these; each stream's message is described by a JSON Schema built from "
+           f"them, in `{MESSAGES_DIR}/<kind>/<id>.schema.json` (`{MESSAGES_REGENERATE}`) and on each "
+           "component's gallery page.\n\n| type | on the wire |\n|---|---|\n"]
+    for name, (meaning, _) in FIELD_TYPES.items():
+        out.append(f"| `{name}` | {_cell(meaning)} |\n")
+    return "".join(out)
+
+
 def components_page(cat: Catalogue, out_dir: Path | None = None) -> str:
-    out = [HEADER.format(what="component catalogue (components/)"), COMPONENTS_INTRO]
+    out = [HEADER.format(what="component catalogue (components/)"), COMPONENTS_INTRO, field_types_section()]
     for kind in KINDS:
         classes = [cat.by_kind.get(kind, {})[cid] for cid in cat.ids(kind)]
         out.append(f"\n<a id=\"{kind}\"></a>\n\n## {KIND_TITLES.get(kind, kind)}\n\n")
@@ -328,7 +342,8 @@ def _anchor(kind: str, cid: str) -> str:
     return f"{kind}-{cid}".replace("/", "-").replace("_", "-").lower()
 
 
-def component_section(kind: str, cls, out_dir: Path | None) -> str:
+def component_section(kind: str, cls, out_dir: Path | None, types_link: str | None = "#data-field-types") -> str:
+    """One component's declarations; `types_link`: where the data field types are explained (None: no link)."""
     out = [f"\n<a id=\"{_anchor(kind, cls.id)}\"></a>\n\n### `{cls.id}` ({KINDS[kind].kind})\n\n"]
     doc = " ".join(cls.doc().split())
     if doc:
@@ -364,11 +379,21 @@ def component_section(kind: str, cls, out_dir: Path | None) -> str:
             star = " (default)" if lv.name == cls.default_level() else ""
             out.append(f"| `{lv.name}`{star} | {_cell(lv.doc)} |\n")
     data = getattr(cls, "data", ())
-    if data:
-        out.append("\nData fields:\n\n| field | type | default | level | description |\n|---|---|---|---|---|\n")
-        for f in data:
+    extra = getattr(cls, "extra_field", None)
+    if data or extra is not None:
+        types = f" ([types]({types_link}))" if types_link else ""
+        out.append(f"\nData fields{types}:\n\n"
+                   "| field | type | default | level | description |\n|---|---|---|---|---|\n")
+        for f in (*data, *((extra,) if extra is not None else ())):
             level = f.level if isinstance(f.level, str) else (", ".join(f.level) if f.level else "all")
-            out.append(f"| `{f.name}` | {f.type} | `{_short(f.default)}` | {level} | {_cell(f.doc)} |\n")
+            out.append(f"| `{f.name}` | `{f.type}` | `{_short(f.default)}` | {level} | {_cell(f.doc)} |\n")
+    message = getattr(cls, "message_fields", None)
+    if message is not None:
+        out.append("\nStream message (its own format, not the data fields):\n\n"
+                   "| field | type | level | description |\n|---|---|---|---|\n")
+        for f in cls.wire_fields(None):
+            level = f.level if isinstance(f.level, str) else (", ".join(f.level) if f.level else "all")
+            out.append(f"| `{f.name}` | `{f.type}` | {level} | {_cell(f.doc)} |\n")
     return "".join(out)
 
 
@@ -393,7 +418,8 @@ def generate(cat: Catalogue, out_dir: Path | None = None) -> dict[str, str]:
     The component gallery (components/<kind>/<id>.md) is generated with them."""
     from morsec.app.gallery import component_pages
     pages = {"scene-format.md": scene_format_page(cat), "components.md": components_page(cat, out_dir)}
-    pages.update(component_pages(cat, lambda kind, cls: component_section(kind, cls, None)))
+    pages.update(component_pages(cat, lambda kind, cls, depth: component_section(
+        kind, cls, None, f"{depth}components.md#data-field-types")))
     return pages
 
 

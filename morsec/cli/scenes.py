@@ -45,15 +45,26 @@ def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to vali
 
 def schema(
     manifest: Annotated[bool, typer.Option("--manifest", help="the schema of a build's manifest.json instead")] = False,
+    messages: Annotated[Optional[Path], typer.Option(
+        "--messages", help="instead, write the JSON Schema of each stream's message in this folder "
+        "(<kind>/<id>.schema.json; the repository keeps them in schemas/messages)")] = None,
 ) -> None:
-    """Print the JSON Schema of a scene, with every catalogue component's own properties (or of manifest.json)."""
+    """Print the JSON Schema of a scene, with every catalogue component's own properties; with --manifest,
+    of a build's manifest.json; with --messages, write the schemas of the stream messages instead."""
     from morsec.component.catalogue import load_catalogue
     from morsec.scene.manifest import manifest_schema_text
     from morsec.scene.schema import json_schema_text
     try:
+        if messages is not None:
+            from morsec.app.schemas import write_message_schemas
+            written = write_message_schemas(messages, load_catalogue())
+            typer.echo(f"wrote {len(written)} message schemas in {messages}")
+            return
         sys.stdout.write(manifest_schema_text() if manifest else json_schema_text(load_catalogue()))
     except MorsecError as err:
         fail(err)
+    except OSError as err:
+        fail(MorsecError(f"{messages}: cannot write the message schemas: {err.strerror or err}"))
 
 
 def convert(

@@ -7,7 +7,12 @@ discovers component folders. Component authors import from here:
 from morsec.component.catalogue import component_class
 from morsec.component.contract import (Actuator, Component, ComponentProperties, DataField, Device, Environment,
                                        Level, Prop, Robot, RobotProperties, Sensor)
+from morsec.component.fields import FIELD_TYPES
+from morsec.component.properties import (ComputationModeProperties, ControlTypeProperties, RotorcraftProperties,
+                                         WheeledRobotProperties)
 from morsec.component.services import ServiceInfo, async_service, service
 
-__all__ = ["Actuator", "Component", "ComponentProperties", "DataField", "Device", "Environment", "Level", "Prop",
-           "Robot", "RobotProperties", "Sensor", "ServiceInfo", "async_service", "component_class", "service"]
+__all__ = ["Actuator", "Component", "ComponentProperties", "ComputationModeProperties", "ControlTypeProperties",
+           "DataField", "Device", "Environment", "FIELD_TYPES", "Level", "Prop", "Robot", "RobotProperties",
+           "RotorcraftProperties", "Sensor", "ServiceInfo", "WheeledRobotProperties", "async_service",
+           "component_class", "service"]

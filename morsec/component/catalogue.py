@@ -22,7 +22,7 @@ from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any, Literal, get_args, get_origin
 
-from morsec.component.contract import KINDS, Component, ComponentProperties, Device
+from morsec.component.contract import KINDS, Component, ComponentProperties, DataField, Device
 from morsec.errors import MorsecError, did_you_mean, one_of
 from morsec.modifiers.base import Modifier
 from morsec.modifiers.registry import MODIFIERS
@@ -212,6 +212,7 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
         cls.builder_name = camel_case(cid)
     check_properties(cls.Properties, folder)
     check_modifiers(cls, folder)
+    check_data(cls, folder)
     return cls
 
 
@@ -284,6 +285,16 @@ def modifier_class(name: str, cls: type[Component]) -> type[Modifier] | None:
     """The modifier class `alter(name)` gives on a component class (declared by the class or inherited from
     its parents: a preset such as `sick` takes the modifiers of `laser_scanner`); None: it does not apply."""
     return getattr(cls, "modifiers", {}).get(name.lower())
+
+
+def check_data(cls: type[Component], folder: Path) -> None:
+    """Data fields are DataFields (their types were checked when they were made: see morsec.component.fields)."""
+    message = getattr(cls, "message_fields", None) or ()
+    extra = getattr(cls, "extra_field", None)
+    for entry in (*getattr(cls, "data", ()), *message, *((extra,) if extra is not None else ())):
+        if not isinstance(entry, DataField):
+            raise MorsecError(f"{folder / 'component.py'}: data fields must be DataField(name, default, type, doc), "
+                              f"got {entry!r}")
 
 
 def level_class(cls: type[Device], level: str | None) -> type[Device]:

@@ -25,34 +25,27 @@ from typing import Any, ClassVar
 
 import mujoco
 import numpy as np
-from pydantic import BaseModel, ConfigDict
-
+from morsec.component.fields import check_type, object_schema
+from morsec.component.properties import ComponentProperties, RobotProperties
 from morsec.component.services import ServiceInfo, service
 from morsec.errors import did_you_mean
 from morsec.kits.geometry import matrix_to_euler
 from morsec.modifiers.base import Modifier
 
 
-class ComponentProperties(BaseModel):
-    """Base of every component's properties: basic types only (bool, int, float, str), unknown names rejected."""
-
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
-
-
-class RobotProperties(ComponentProperties):
-    NoGravity: bool = False
-    GroundRobot: bool = False
-
-
 @dataclass(frozen=True)
 class DataField:
-    """One entry of `local_data` (add_data): on the wire in declaration order, `timestamp` first for sensors."""
+    """One entry of `local_data` (add_data): on the wire in declaration order, `timestamp` first for sensors.
+    `type` is one of morsec.component.fields.FIELD_TYPES ("float", "vec3", "list[float]", ...)."""
 
     name: str
     default: Any
     type: str
     doc: str
     level: str | tuple[str, ...] | None = None  # None: present at every level
+
+    def __post_init__(self) -> None:
+        check_type(self.name, self.type)
 
     def at(self, level: str | None) -> bool:
         if self.level is None or level is None:
@@ -109,6 +102,12 @@ class Device(Component):
     # morsec.modifiers.registry, e.g. {"noise": PoseNoise, "ned": ToNED}. A subclass (a preset, a level)
     # inherits them, as any class attribute; to add some: {**Base.modifiers, "feet": ToFeet}
     modifiers: ClassVar[dict[str, type[Modifier]]] = {}
+    # the stream's message, when it is not `local_data`'s fields: a sensor whose serialize() has its own
+    # format (cameras: pictures in base64, their size) declares the fields of that message here
+    message_fields: ClassVar[tuple[DataField, ...] | None] = None
+    # keys besides the declared fields, named at run time (an armature's joints, a compound's sensors): one
+    # DataField giving their type and meaning ("<joint>": float); None: no other key
+    extra_field: ClassVar[DataField | None] = None
 
     @classmethod
     def default_level(cls) -> str | None:
@@ -120,6 +119,25 @@ class Device(Component):
     @classmethod
     def fields_at(cls, level: str | None) -> list[DataField]:
         return [f for f in cls.data if f.at(level)]
+
+    @classmethod
+    def wire_fields(cls, level: str | None) -> list[DataField]:
+        """The fields of a stream message at `level`, in order."""
+        if cls.message_fields is None:
+            return cls.fields_at(level)
+        return [f for f in cls.message_fields if f.at(level)]
+
+    @classmethod
+    def message_schema(cls, level: str | None = None) -> dict:
+        """JSON Schema of one message of this component's stream at `level` (a component whose message the
+        fields cannot describe, e.g. one nesting other components' messages, overrides it)."""
+        sensor = getattr(cls, "direction", "OUT") == "OUT"
+        what = ("what the sensor publishes each tick: one JSON object per line of its socket stream" if sensor
+                else "a command to the actuator: one JSON object per line of its socket stream; a field left "
+                "out takes its default")
+        title = f"{cls.id} message" + (f" (level {level})" if level else "")
+        return object_schema(cls.wire_fields(level), cls.extra_field, required=sensor, title=title,
+                             description=what)
 
     @classmethod
     def services(cls) -> dict[str, ServiceInfo]:
@@ -206,7 +224,8 @@ class Device(Component):
         return res[3:], res[:3]
 
 
-TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s (Unix epoch unless relative time)")
+TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure, s: since the Unix epoch (the clock "
+                      "starts at the wall-clock time of the start), or since the start with environment.time.relative")
 
 
 class Sensor(Device):
@@ -216,6 +235,11 @@ class Sensor(Device):
     @classmethod
     def fields_at(cls, level: str | None) -> list[DataField]:
         return [TIMESTAMP] + super().fields_at(level)
+
+    @classmethod
+    def wire_fields(cls, level: str | None) -> list[DataField]:
+        fields = super().wire_fields(level)
+        return fields if cls.message_fields is None else [TIMESTAMP] + fields
 
     @service
     def get_local_data(self) -> dict:

@@ -31,7 +31,7 @@ from typing import Any, Callable, ClassVar
 import numpy as np
 from pydantic import Field, model_validator
 
-from morsec.component.contract import ComponentProperties, Sensor
+from morsec.component.contract import ComponentProperties, DataField, Sensor
 from morsec.component.services import async_service, service
 from morsec.errors import MorsecError
 
@@ -70,26 +70,41 @@ def optical_rotation(yaw: float) -> np.ndarray:
     return OPTICAL_TO_COMPONENT.T @ rz @ OPTICAL_TO_COMPONENT
 
 
+# fields of the cameras' socket messages, declared once
+PICTURE_SIZE = (
+    DataField("height", 0, "int", "picture height, pixels (cam_height)"),
+    DataField("width", 0, "int", "picture width, pixels (cam_width)"),
+)
+INTRINSIC_MATRIX = DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3",
+                             "intrinsic calibration matrix of the picture, row major: [[fx, 0, cx], [0, fy, cy], "
+                             "[0, 0, 1]], pixels: fx = fy = max(w, h) * cam_focal / 32 (a 32 mm sensor across the "
+                             "larger side, Blender's), or max(w, h) / 2 / tan(cam_fov / 2) when cam_fov is set; "
+                             "cx = w / 2, cy = h / 2")
+
+
 class CameraProperties(ComponentProperties):
     """MORSE's Camera properties (`camera.py`), with the VideoCamera builder's defaults."""
 
-    cam_width: int = Field(256, ge=1, description="image width, pixels (read at start)")
-    cam_height: int = Field(256, ge=1, description="image height, pixels (read at start)")
+    cam_width: int = Field(256, ge=1, description="image width, pixels (read at start; at most the scene's "
+                           "offscreen buffer, 1920)")
+    cam_height: int = Field(256, ge=1, description="image height, pixels (read at start; at most the scene's "
+                            "offscreen buffer, 1080)")
     cam_focal: float = Field(35.0, gt=0, description="focal length, mm, for a 32 mm sensor across the larger "
-                             "image side (read at start)")
+                             "image side (read at start); 35 is MORSE's builder default (its core default 25 is "
+                             "not used)")
     cam_fov: float = Field(0.0, ge=0, lt=180, description="field of view across the larger image side, deg; "
                            "0: not set (MORSE's None), cam_focal decides; when set it wins over cam_focal")
-    cam_near: float = Field(0.1, gt=0, description="near clipping distance, m")
-    cam_far: float = Field(100.0, gt=0, description="far clipping distance, m")
+    cam_near: float = Field(0.1, gt=0, description="near clipping distance, m: nothing nearer is drawn")
+    cam_far: float = Field(100.0, gt=0, description="far clipping distance, m: nothing farther is drawn")
     Vertical_Flip: bool = Field(True, description="true: the image's first row is the top of the picture; false: "
                                 "the bottom (OpenGL's order)")
-    capturing: bool = Field(True, description="grab images (MORSE toggles it with the Space key); false: no "
-                            "image, no message")
+    capturing: bool = Field(True, description="grab images (MORSE toggles it with the Space key; here "
+                            "set_property); false: no image, no message")
     retrieve_depth: bool = Field(False, description="MORSE's switch to a depth buffer; accepted, no effect: "
-                                 "the component type decides what is rendered")
+                                 "the component type decides what is rendered (depth_camera, depth_video_camera)")
     retrieve_zbuffer: bool = Field(False, description="MORSE's raw z-buffer switch; accepted, no effect")
-    shadows: bool = Field(False, description="render shadows and reflections (off: sensor cameras render "
-                          "without them, faster)")
+    shadows: bool = Field(False, description="render shadows and reflections (off by default: sensor cameras "
+                          "render without them, faster; MuJoCo's viewer draws them)")
 
     @model_validator(mode="after")
     def _clip_planes(self):

@@ -27,7 +27,7 @@ import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, async_service, service
+from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
 from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 from morsec.kits.ik import InverseKinematics, rotation_error, slerp
 from morsec.kits.servos import JointServos
@@ -68,6 +68,8 @@ class Armature(Actuator):
         IKLinearSpeed: float = Field(0.5, gt=0, description="default linear speed of an IK target, m/s")
 
     data = ()  # the joints, from the model: {joint name: position}, root to tip
+    extra_field = DataField("<joint>", 0.0, "float", "target of each joint named (its name in the arm's model), "
+                            "rad (revolute) or m (prismatic); joints left out keep their targets")
 
     # ------------------------------------------------------------------ set up
     def start(self):

@@ -58,7 +58,8 @@ class Arucomarker(Actuator):
     frequency = 60.0
 
     class Properties(ComponentProperties):
-        xoffset: float = Field(0.0, description="offset added along the robot's x axis, m")
+        xoffset: float = Field(0.0, description="static offset added along the robot's x axis, m (align the marker "
+                               "with a camera)")
         yoffset: float = Field(0.0, description="offset added along the robot's y axis, m")
         zoffset: float = Field(0.0, description="offset added along the robot's z axis, m")
 

@@ -1,11 +1,10 @@
 from __future__ import annotations
 
-from typing import Literal
 
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.component import Actuator, ControlTypeProperties, DataField
 from morsec.modifiers.coordinates import POSITION_IN
 
 
@@ -21,10 +20,9 @@ class Destination(Actuator):
     modifiers = POSITION_IN
     base_servo = True
 
-    class Properties(ComponentProperties):
+    class Properties(ControlTypeProperties):
         Tolerance: float = Field(0.5, ge=0, description="distance to the goal, m, under which it is reached")
         Speed: float = Field(5.0, description="speed of the movement, m/s")
-        ControlType: Literal["Velocity", "Position"] = "Velocity"
         RemainAtDestination: bool = Field(False, description="keep servoing to the goal once reached (flying "
                                           "robots that would otherwise drift or fall)")
 

@@ -16,8 +16,8 @@ class ExternalForce(Actuator):
         pass
 
     data = (
-        DataField("force", [0.0, 0.0, 0.0], "vec3<float>", "force along x, y, z, world frame, N"),
-        DataField("torque", [0.0, 0.0, 0.0], "vec3<float>", "torque around x, y, z, world frame, N m"),
+        DataField("force", [0.0, 0.0, 0.0], "vec3", "force along x, y, z, world frame, N"),
+        DataField("torque", [0.0, 0.0, 0.0], "vec3", "torque around x, y, z, world frame, N m"),
     )
 
     def default_action(self):

@@ -22,8 +22,8 @@ class ForceTorque(Actuator):
                                  "of mass; false: in the actuator's frame, the force at the actuator's position")
 
     data = (
-        DataField("force", [0.0, 0.0, 0.0], "vec3<float>", "force along x, y, z, N"),
-        DataField("torque", [0.0, 0.0, 0.0], "vec3<float>", "torque around x, y, z, N m"),
+        DataField("force", [0.0, 0.0, 0.0], "vec3", "force along x, y, z, N"),
+        DataField("torque", [0.0, 0.0, 0.0], "vec3", "torque around x, y, z, N m"),
     )
 
     def default_action(self):

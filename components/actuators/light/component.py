@@ -36,10 +36,14 @@ class Light(Actuator):
 
     class Properties(ComponentProperties):
         emit: bool = Field(True, description="set to false to start with the light off")
-        distance: float = Field(10.0, gt=0, description="distance at which the light energy is halved, m")
-        color: str = Field("(0,0,0)", description="light colour \"(r,g,b)\" in 0..1; \"(0,0,0)\": white")
-        size: float = Field(math.pi / 2, gt=0, lt=2 * math.pi, description="full angle of the spot's cone, rad")
-        energy: float = Field(1.0, ge=0, description="light energy when on (scales the colour)")
+        distance: float = Field(10.0, gt=0, description="distance at which the light energy is halved, m "
+                                "(attenuation 1 + (r / distance)^2)")
+        color: str = Field("(0,0,0)", description="light colour \"(r,g,b)\" in 0..1; \"(0,0,0)\": the lamp's own "
+                           "white (MORSE's builder only sets a colour you give)")
+        size: float = Field(math.pi / 2, gt=0, lt=2 * math.pi, description="full angle of the spot's cone, rad "
+                            "(MuJoCo cutoff = size / 2)")
+        energy: float = Field(1.0, ge=0, description="light energy when on: scales the colour (MuJoCo diffuse = "
+                              "colour x energy)")
 
         @field_validator("color")
         @classmethod
@@ -55,7 +59,7 @@ class Light(Actuator):
                 color = (1.0, 1.0, 1.0)
             return [c * self.energy for c in color]
 
-    data = (DataField("emit", True, "bool", "on/off switch"),)
+    data = (DataField("emit", True, "bool", "on/off switch (streamed in, or the toggle service)"),)
 
     def start(self):
         self.light = mujoco.mj_name2id(self.sim.model, mujoco.mjtObj.mjOBJ_LIGHT, self.name)

@@ -1,6 +1,4 @@
-from typing import Literal
-
-from morsec.component import Actuator, ComponentProperties, DataField, service
+from morsec.component import Actuator, ControlTypeProperties, DataField, service
 
 
 class MotionVW(Actuator):
@@ -16,8 +14,8 @@ class MotionVW(Actuator):
     frequency = 60.0
     base_servo = True
 
-    class Properties(ComponentProperties):
-        ControlType: Literal["Velocity", "Position"] = "Velocity"
+    class Properties(ControlTypeProperties):
+        pass
 
     data = (
         DataField("v", 0.0, "float", "forward velocity, robot frame, m/s"),

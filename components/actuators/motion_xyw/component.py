@@ -1,6 +1,4 @@
-from typing import Literal
-
-from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.component import Actuator, ControlTypeProperties, DataField
 
 
 class MotionXYW(Actuator):
@@ -14,8 +12,8 @@ class MotionXYW(Actuator):
     frequency = 60.0
     base_servo = True
 
-    class Properties(ComponentProperties):
-        ControlType: Literal["Velocity", "Position"] = "Velocity"
+    class Properties(ControlTypeProperties):
+        pass
 
     data = (
         DataField("x", 0.0, "float", "movement forward (x of the robot), m/s"),

@@ -1,12 +1,11 @@
 from __future__ import annotations
 
 import math
-from typing import Literal
 
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.component import Actuator, ControlTypeProperties, DataField
 from morsec.kits.geometry import euler_to_quat, normalize_angle, quat_to_matrix
 from morsec.modifiers.coordinates import AnglesFromNED
 
@@ -26,11 +25,11 @@ class Orientation(Actuator):
     modifiers = {"ned": AnglesFromNED}
     base_servo = True
 
-    class Properties(ComponentProperties):
+    class Properties(ControlTypeProperties):
         speed: float = Field(math.inf, gt=0, allow_inf_nan=True, json_schema_extra=_no_default,
-                             description="rotation speed, rad/s; default inf: the rotation is instantaneous")
+                             description="rotation speed, rad/s; default inf: the rotation is instantaneous "
+                             "(write .inf in YAML, inf in TOML)")
         tolerance: float = Field(0.02, ge=0, description="angle, rad, under which a goal angle is reached")
-        ControlType: Literal["Velocity", "Position"] = "Velocity"
 
     data = (
         DataField("yaw", 0.0, "float", "rotation about z, rad (default: the initial orientation)"),

@@ -34,7 +34,7 @@ class QuadrotorDynamicControl(Actuator):
             "front arms")
 
     data = (
-        DataField("engines", [0.0, 0.0, 0.0, 0.0], "vec4<float>", "speed of each engine, rad/s"),
+        DataField("engines", [0.0, 0.0, 0.0, 0.0], "vec4", "speed of each engine, rad/s"),
     )
 
     def transformation(self) -> np.ndarray:

@@ -21,7 +21,7 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField
+from morsec.component import Actuator, DataField, RotorcraftProperties
 from morsec.kits.geometry import matrix_to_euler, normalize_angle
 
 
@@ -33,11 +33,11 @@ class RotorcraftAttitude(Actuator):
     builder_name = "RotorcraftAttitude"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
-        RollPitchPgain: float = Field(100.0, description="proportional gain for roll/pitch control, 1/s^2")
-        RollPitchDgain: float = Field(20.0, description="derivative gain for roll/pitch control, 1/s")
-        YawPgain: float = Field(16.0, description="proportional gain for yaw control, 1/s^2")
-        YawDgain: float = Field(4.0, description="derivative gain for yaw control, 1/s")
+    class Properties(RotorcraftProperties):
+        RollPitchPgain: float = 100.0
+        RollPitchDgain: float = 20.0
+        YawPgain: float = 16.0
+        YawDgain: float = 4.0
         ThrustFactor: float = Field(40.0, description="thrust force at full thrust (thrust = 1), N")
         LinearThrust: bool = Field(True, description="force = ThrustFactor * thrust (false: ThrustFactor * "
                                    "thrust^2)")

@@ -20,7 +20,7 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField, service
+from morsec.component import Actuator, DataField, RotorcraftProperties, service
 from morsec.kits.geometry import matrix_to_euler, normalize_angle
 
 
@@ -32,17 +32,14 @@ class RotorcraftVelocity(Actuator):
     builder_name = "RotorcraftVelocity"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
+    class Properties(RotorcraftProperties):
         HorizontalPgain: float = Field(0.2, description="horizontal velocity P gain, rad of tilt per m/s")
         HorizontalDgain: float = Field(0.8, description="horizontal acceleration D gain, rad per m/s^2")
         VerticalPgain: float = Field(8.0, description="vertical velocity P gain, N per m/s")
         VerticalDgain: float = Field(2.0, description="vertical acceleration D gain, N per m/s^2: unused, as "
                                      "in MORSE (an acceleration fed back through the thrust makes a light "
                                      "robot oscillate)")
-        YawPgain: float = Field(12.0, description="yaw P gain of the inner loop, 1/s^2")
-        YawDgain: float = Field(8.0, description="yaw D gain of the inner loop, 1/s")
-        RollPitchPgain: float = Field(9.7, description="roll and pitch P gain of the inner loop, 1/s^2")
-        RollPitchDgain: float = Field(2.0, description="roll and pitch D gain of the inner loop, 1/s")
+        YawDgain: float = 8.0
         MaxBankAngle: float = Field(math.radians(30), gt=0, lt=math.pi / 2,
                                     description="largest roll or pitch setpoint, rad (limits the horizontal "
                                     "acceleration)")

@@ -24,7 +24,7 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
+from morsec.component import Actuator, DataField, RotorcraftProperties, async_service, service
 from morsec.kits.geometry import matrix_to_euler, normalize_angle
 
 log = logging.getLogger("morsec.actuators.rotorcraft_waypoint")
@@ -38,16 +38,12 @@ class RotorcraftWaypoint(Actuator):
     builder_name = "RotorcraftWaypoint"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
+    class Properties(RotorcraftProperties):
         HorizontalPgain: float = Field(math.radians(6), description="horizontal position P gain, rad of tilt "
                                        "per m")
         HorizontalDgain: float = Field(math.radians(8), description="horizontal velocity D gain, rad per m/s")
         VerticalPgain: float = Field(8.0, description="vertical position P gain, N per m")
         VerticalDgain: float = Field(8.0, description="vertical velocity D gain, N per m/s")
-        YawPgain: float = Field(12.0, description="yaw P gain, 1/s^2")
-        YawDgain: float = Field(6.0, description="yaw D gain, 1/s")
-        RollPitchPgain: float = Field(9.7, description="roll and pitch P gain, 1/s^2")
-        RollPitchDgain: float = Field(2.0, description="roll and pitch D gain, 1/s")
         MaxBankAngle: float = Field(math.radians(30), gt=0, lt=math.pi / 2,
                                     description="largest roll or pitch setpoint, rad")
         RemainAtDestination: bool = Field(True, description="keep flying to the goal once reached (false: "

@@ -47,7 +47,8 @@ class StabilizedQuadrotor(Actuator):
         DataField("theta_c", 0.0, "float", "pitch command, rad: the acceleration along x (about 10 theta_c m/s^2)"),
         DataField("phi_c", 0.0, "float", "roll command, rad: the acceleration along -y"),
         DataField("psi_c", 0.0, "float", "yaw command: the robot turns at about -7.1 psi_c rad/s"),
-        DataField("h_c", 0.0, "float", "height command, m (z of the robot's origin)"),
+        DataField("h_c", 0.0, "float", "height command, m (z of the robot's origin); starts at the robot's "
+                  "initial height"),
     )
 
     def start(self):

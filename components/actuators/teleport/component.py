@@ -14,10 +14,10 @@ class Teleport(Actuator):
     frequency = 60.0
     modifiers = {name: m for name, m in POSITION_IN.items() if name != "utm"}  # no utm, as MORSE
     data = (
-        DataField("x", 0.0, "float", "x of the actuator, world frame, m (default: initial pose)"),
-        DataField("y", 0.0, "float", "y, m"),
-        DataField("z", 0.0, "float", "z, m"),
-        DataField("roll", 0.0, "float", "rotation about x, rad"),
+        DataField("x", 0.0, "float", "x of the actuator frame, world frame, m (default: its initial pose)"),
+        DataField("y", 0.0, "float", "y of the actuator frame, world frame, m"),
+        DataField("z", 0.0, "float", "z of the actuator frame, world frame, m"),
+        DataField("roll", 0.0, "float", "rotation about x, rad (XYZ Euler angles of the actuator frame)"),
         DataField("pitch", 0.0, "float", "rotation about y, rad"),
         DataField("yaw", 0.0, "float", "rotation about z, rad"),
     )

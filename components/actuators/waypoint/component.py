@@ -23,13 +23,12 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Literal
 
 import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.component import Actuator, ComponentProperties, DataField, async_service, service
+from morsec.component import Actuator, ControlTypeProperties, DataField, async_service, service
 from morsec.kits.geometry import normalize_angle
 from morsec.modifiers.coordinates import POSITION_IN
 
@@ -57,7 +56,7 @@ class Waypoint(Actuator):
     modifiers = POSITION_IN
     base_servo = True
 
-    class Properties(ComponentProperties):
+    class Properties(ControlTypeProperties):
         ObstacleAvoidance: bool = Field(True, description="steer away from obstacles seen by the two radar fans")
         FreeZ: bool = Field(False, description="control z too (flying or underwater robots); else the distance "
                             "to the goal is planar")
@@ -67,7 +66,6 @@ class Waypoint(Actuator):
         Target: str = Field("", description="name of a scene object moved to the goal (a visual marker)")
         Ignore: str = Field("", description="comma-separated property names: objects having one are ignored by "
                             "the obstacle avoidance")
-        ControlType: Literal["Velocity", "Position"] = "Velocity"
         RemainAtDestination: bool = Field(False, description="keep servoing to the goal after arrival (drive "
                                           "back if pushed away)")
 

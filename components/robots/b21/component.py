@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component import Robot, RobotProperties
 
 
@@ -14,8 +12,7 @@ class B21(Robot):
     spawn_height = 0.0
 
     class Properties(RobotProperties):
-        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
-                                  "under velocity actuators")
+        GroundRobot: bool = True
 
 
 COMPONENT = B21

@@ -27,8 +27,7 @@ class Hummer(Robot):
     steering_kv: ClassVar[float] = 800.0
 
     class Properties(RobotProperties):
-        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
-                                  "under velocity actuators")
+        GroundRobot: bool = True
         brakes: float = Field(0.0, description="MORSE vehicle wrapper: brake value (recorded; steer_force "
                               "brakes)")
         friction: float = Field(200.0, description="MORSE vehicle wrapper: Bullet tyre friction (recorded; "

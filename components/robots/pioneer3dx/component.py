@@ -2,7 +2,7 @@ from typing import ClassVar
 
 from pydantic import Field
 
-from morsec.component import Robot, RobotProperties
+from morsec.component import Robot, WheeledRobotProperties
 
 
 class Pioneer3DX(Robot):
@@ -23,18 +23,11 @@ class Pioneer3DX(Robot):
     wheel_kv: ClassVar[float] = 10.0
     wheel_max_torque: ClassVar[float] = 10.0
 
-    class Properties(RobotProperties):
-        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
-                                  "under velocity actuators")
-        HasSuspension: bool = Field(False, description="MORSE PhysicsWheelRobot: wheels on suspensions")
-        Influence: float = Field(0.1, description="MORSE wheel suspension influence")
-        Friction: float = Field(0.8, description="MORSE wheel friction")
+    class Properties(WheeledRobotProperties):
+        GroundRobot: bool = True
         WheelFLName: str = Field("Wheel_L", description="link name of the left drive wheel")
         WheelFRName: str = Field("Wheel_R", description="link name of the right drive wheel")
         CasterWheelName: str = Field("CasterWheel", description="link name of the rear caster wheel")
-        FixTurningSpeed: float = Field(0.0, description="MORSE PhysicsDifferentialRobot: replaces the wheel "
-                                       "track in the wheel-speed formula (0: the real track). MORSE's 0.52 "
-                                       "corrected Bullet's wheels; on MuJoCo the real track tracks w")
 
 
 COMPONENT = Pioneer3DX

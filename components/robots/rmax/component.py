@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component import Robot, RobotProperties
 
 
@@ -15,8 +13,7 @@ class RMax(Robot):
     spawn_height = 0.55
 
     class Properties(RobotProperties):
-        NoGravity: bool = Field(True, description="float: gravity compensated (false: it falls and lands on "
-                                "its skids)")
+        NoGravity: bool = True
 
 
 COMPONENT = RMax

@@ -2,7 +2,7 @@ from typing import ClassVar
 
 from pydantic import Field
 
-from morsec.component import Robot, RobotProperties
+from morsec.component import Robot, WheeledRobotProperties
 
 
 class SegwayRMP400(Robot):
@@ -30,23 +30,15 @@ class SegwayRMP400(Robot):
     joint_armature: ClassVar[dict[str, float]] = {
         j: 2.0 for j in ("wheel_left_joint", "wheel_rear_left_joint", "wheel_right_joint", "wheel_rear_right_joint")}
 
-    class Properties(RobotProperties):
-        GroundRobot: bool = Field(True, description="keeps physics-driven vertical velocity, roll and pitch "
-                                  "under velocity actuators")
-        HasSuspension: bool = Field(False, description="MORSE PhysicsWheelRobot: wheels on suspensions "
-                                    "(recorded; the wheels are rigid here)")
+    class Properties(WheeledRobotProperties):
+        GroundRobot: bool = True
         HasSteering: bool = Field(False, description="MORSE PhysicsWheelRobot: wheels steer (recorded; they "
                                   "do not)")
-        Influence: float = Field(0.1, description="MORSE wheel suspension influence (recorded)")
-        Friction: float = Field(0.8, description="MORSE wheel friction (recorded)")
-        WheelFLName: str = Field("wheel1", description="link name of the front left wheel")
-        WheelFRName: str = Field("wheel2", description="link name of the front right wheel")
+        WheelFLName: str = "wheel1"
+        WheelFRName: str = "wheel2"
         WheelRLName: str = Field("wheel3", description="link name of the rear left wheel")
         WheelRRName: str = Field("wheel4", description="link name of the rear right wheel")
-        FixTurningSpeed: float = Field(1.5, description="MORSE PhysicsDifferentialRobot: replaces the wheel "
-                                       "track in the wheel-speed formula (0: the real track). 1.5 makes this "
-                                       "skid-steered robot turn at the commanded w on MuJoCo (its wheels slip "
-                                       "sideways when turning); MORSE's 1.16 was tuned for Bullet")
+        FixTurningSpeed: float = 1.5
 
 
 COMPONENT = SegwayRMP400

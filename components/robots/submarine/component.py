@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component import Robot, RobotProperties
 
 
@@ -15,8 +13,7 @@ class Submarine(Robot):
     spawn_height = 0.25
 
     class Properties(RobotProperties):
-        NoGravity: bool = Field(True, description="float: gravity compensated, as under water with neutral "
-                                "buoyancy (false: it sinks to the ground)")
+        NoGravity: bool = True
 
 
 COMPONENT = Submarine

@@ -1,13 +1,8 @@
-from typing import Literal
-
 import mujoco
 import numpy as np
-from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat
-
-VEC3 = "vec3<float>"
 
 
 class Accelerometer(Sensor):
@@ -23,17 +18,15 @@ class Accelerometer(Sensor):
     builder_name = "Accelerometer"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+    class Properties(ComputationModeProperties):
+        pass
 
     data = (
         DataField("distance", 0.0, "float", "distance travelled since the previous tick, m"),
-        DataField("velocity", [0.0, 0.0, 0.0], VEC3, "velocity along the sensor's x, y, z axes, m/s"),
-        DataField("acceleration", [0.0, 0.0, 0.0], VEC3,
+        DataField("velocity", [0.0, 0.0, 0.0], "vec3", "velocity along the sensor's x, y, z axes, m/s"),
+        DataField("acceleration", [0.0, 0.0, 0.0], "vec3",
                   "acceleration along the sensor's x, y, z axes, gravity not included, m/s^2"),
-        DataField("angular_acceleration", [0.0, 0.0, 0.0], VEC3,
+        DataField("angular_acceleration", [0.0, 0.0, 0.0], "vec3",
                   "angular acceleration about the sensor's x, y, z axes, rad/s^2"),
     )
 

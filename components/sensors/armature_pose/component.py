@@ -5,7 +5,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from morsec.component import Sensor, service
+from morsec.component import DataField, Sensor, service
 
 
 class ArmaturePose(Sensor):
@@ -18,6 +18,8 @@ class ArmaturePose(Sensor):
     frequency = 60.0
 
     data = ()  # the armature's joints: {joint name: position}, root to tip
+    extra_field = DataField("<joint>", 0.0, "float", "position of each joint of the armature (e.g. kuka_1 ... "
+                            "kuka_7), root to tip: rad (revolute) or m (prismatic)")
 
     def start(self):
         m = self.sim.model

@@ -1,11 +1,10 @@
 import math
-from typing import Literal
 
 import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat, normalize_angle
 
 
@@ -20,18 +19,18 @@ class Attitude(Sensor):
     builder_name = "Attitude"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
+    class Properties(ComputationModeProperties):
         UseAngleAgainstNorth: bool = Field(
-            False, description="yaw from true north instead of from the scene's x axis (needs the "
-            "environment's longitude, latitude, altitude and optionally angle_against_north)")
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+            False, description="yaw from true north instead of from the scene's x axis, counter-clockwise like "
+            "the scene's yaw (-bearing of the sensor's x axis, in [-pi, pi)): facing north reads 0, facing east "
+            "-pi/2. Needs the environment's longitude, latitude, altitude (and optionally angle_against_north): "
+            "without them the simulation does not start")
 
     data = (
-        DataField("rotation", [0.0, 0.0, 0.0], "Euler angles (XYZ)",
-                  "roll, pitch, yaw of the sensor, rad (yaw from north with UseAngleAgainstNorth)"),
-        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the sensor's x, y, z axes, rad/s"),
+        DataField("rotation", [0.0, 0.0, 0.0], "vec3",
+                  "roll, pitch, yaw of the sensor (XYZ Euler angles, as pose), rad; yaw from north with "
+                  "UseAngleAgainstNorth"),
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the sensor's x, y, z axes, rad/s"),
     )
 
     def start(self):

@@ -15,12 +15,13 @@ class Battery(Sensor):
     frequency = 60.0
 
     class Properties(ComponentProperties):
-        DischargingRate: float = Field(0.05, ge=0.0, description="discharge (and charge) rate, percent per "
-                                       "simulated second")
+        DischargingRate: float = Field(0.05, ge=0.0, description="discharge rate, percent per simulated second; "
+                                       "the charge rises at the same rate in a Charging zone")
 
     data = (
-        DataField("charge", 100.0, "float", "battery charge, percent (starts full)"),
-        DataField("status", "Charged", "string", "Charged, Charging or Discharging"),
+        DataField("charge", 100.0, "float", "battery charge, percent: starts at 100, never below 0 nor above 100"),
+        DataField("status", "Charged", "str", "Charged (full: at start, or filled up in a charging zone), "
+                  "Charging (in a charging zone) or Discharging (elsewhere, also once empty)"),
     )
 
     def start(self):

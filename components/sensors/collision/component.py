@@ -16,11 +16,13 @@ class Collision(Sensor):
 
     class Properties(ComponentProperties):
         only_objects_with_property: str = Field(
-            "", description="count only robots and objects carrying this property (empty: everything)")
+            "", description="count only robots and objects carrying this property (or whose Type is it); empty: "
+            "everything")
 
     data = (
-        DataField("collision", False, "bool", "true when the robot touches something"),
-        DataField("objects", "", "string", "names of what the robot touches, comma-separated, sorted"),
+        DataField("collision", False, "bool", "true while the robot touches something that counts"),
+        DataField("objects", "", "str", "what the robot touches, comma-separated and sorted: robot and object "
+                  "names; other environment geometry by its geom name (env/wall_north)"),
     )
 
     def start(self):

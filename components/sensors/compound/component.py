@@ -2,7 +2,7 @@ from typing import ClassVar
 
 from pydantic import Field
 
-from morsec.component import ComponentProperties, Sensor
+from morsec.component import ComponentProperties, DataField, Sensor
 
 
 class CompoundSensor(Sensor):
@@ -21,6 +21,8 @@ class CompoundSensor(Sensor):
                              "e.g. 'quad.imu,quad.gps,quad.pose'")
 
     data = ()
+    extra_field = DataField("<robot.sensor>", {}, "dict", "for each sensor listed, in the order listed: that "
+                            "sensor's latest data (its own timestamp first)")
 
     def start(self):
         names = [s.strip() for s in self.properties.sensors.split(",") if s.strip()]

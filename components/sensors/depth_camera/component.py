@@ -3,7 +3,8 @@
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import DepthCameraProperties, b64, depth_points, parse_keep_list, pixel_rays
+from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties, b64, depth_points,
+                                parse_keep_list, pixel_rays)
 from morsec.component.catalogue import component_class
 from morsec.component import DataField
 
@@ -23,21 +24,24 @@ class DepthCamera(VideoCamera):
     frequency = 20.0
 
     class Properties(DepthCameraProperties):
-        keep_list: str = Field("", description="image rows kept, e.g. '[1, 17, 34]' (rows as delivered: from the "
-                               "bottom unless Vertical_Flip); empty: every row")
-        keep_resolution: bool = Field(False, description="one point per pixel of the kept rows, NaN where "
-                                      "nothing was seen (an organized cloud); false: only the pixels that saw "
-                                      "something")
+        keep_list: str = Field("", description="image rows kept, e.g. '[1, 17, 34]' (or '1, 17, 34'), counted as "
+                               "delivered: from the bottom unless Vertical_Flip; empty: every row. A few rows of a "
+                               "wide camera emulate a multi-layer lidar (see vlp16)")
+        keep_resolution: bool = Field(False, description="true: one point for every pixel of the kept rows, NaN "
+                                      "(x, y, z) where nothing was seen (an organized cloud of cam_width x rows "
+                                      "points); false: only the pixels that saw something")
 
     data = (
-        DataField("points", None, "float32 points",
-                  "nb_points x 3 float32: x, y, z of each point in the camera's optical frame (x right, y down, "
-                  "z forward), m, row by row (kept rows in keep_list order), left to right; on the wire base64 "
-                  "of its nb_points * 12 bytes"),
+        DataField("points", None, "base64",
+                  "nb_points x 3 float32: one point per pixel that saw something between cam_near and cam_far, "
+                  "x, y, z in the camera's optical frame (x right, y down, z forward: z is the distance along the "
+                  "optical axis, the component's +x), m; row by row in the image's row order (kept rows in "
+                  "keep_list order), left to right; on the wire base64 of its nb_points * 12 bytes (MORSE's "
+                  "buffer)"),
         DataField("nb_points", 0, "int", "number of points (at most cam_width * number of kept rows)"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
-                  "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
+        INTRINSIC_MATRIX,
     )
+    message_fields = (*PICTURE_SIZE, *(f for f in data if f.name != "nb_points"))  # see message()
 
     def start(self) -> None:
         super().start()

@@ -1,6 +1,6 @@
 """MORSE's DepthVideoCamera: a depth image in metres."""
 
-from morsec.kits.camera import DepthCameraProperties
+from morsec.kits.camera import INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties
 from morsec.component.catalogue import component_class
 from morsec.component import DataField
 
@@ -19,13 +19,14 @@ class DepthVideoCamera(VideoCamera):
     Properties = DepthCameraProperties
 
     data = (
-        DataField("image", None, "float32 depth image",
-                  "cam_height x cam_width float32 depth along the optical axis, m (cam_far: nothing seen), first "
-                  "row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height * 4 "
-                  "bytes"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
-                  "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
+        DataField("image", None, "base64",
+                  "cam_height x cam_width float32 depth along the optical axis (planar: a wall facing the camera "
+                  "reads the same in every pixel), m; cam_far where nothing was drawn between the clip planes; "
+                  "first row at the bottom unless Vertical_Flip; on the wire base64 of its cam_width * cam_height "
+                  "* 4 bytes (MORSE's buffer)"),
+        INTRINSIC_MATRIX,
     )
+    message_fields = (*PICTURE_SIZE, *data)
 
     def grab(self) -> None:  # the socket message is VideoCamera's, with float32 pixels
         self.local_data["image"] = self.view.depth(self.properties)

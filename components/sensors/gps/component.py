@@ -30,15 +30,18 @@ class GPS(Sensor):
         DataField("x", 0.0, "float", "x coordinate of the sensor, scene (world) frame, m", level="simple"),
         DataField("y", 0.0, "float", "y coordinate of the sensor, scene (world) frame, m", level="simple"),
         DataField("z", 0.0, "float", "z coordinate of the sensor, scene (world) frame, m", level="simple"),
-        DataField("longitude", 0.0, "double", "longitude, degrees in [-180, 180]", level=RAW),
-        DataField("latitude", 0.0, "double", "latitude, degrees in [-90, 90]", level=RAW),
-        DataField("altitude", 0.0, "double", "altitude above the WGS84 ellipsoid, m (same reference as the "
+        DataField("longitude", 0.0, "float", "longitude, degrees in [-180, 180]", level=RAW),
+        DataField("latitude", 0.0, "float", "latitude, degrees in [-90, 90]", level=RAW),
+        DataField("altitude", 0.0, "float", "altitude above the WGS84 ellipsoid, m (same reference as the "
                   "environment's altitude)", level=RAW),
-        DataField("velocity", [0.0, 0.0, 0.0], "vec3<float>", "velocity along East, North, Up, m/s", level=RAW),
-        DataField("date", "000000", "DDMMYY", "UTC date of the timestamp", level="extended"),
-        DataField("time", "000000", "HHMMSS", "UTC time of the timestamp", level="extended"),
-        DataField("heading", 0.0, "float", "heading of the sensor's x axis, degrees clockwise from true north "
-                  "in [0, 360); inf when the sensor does not move", level="extended"),
+        DataField("velocity", [0.0, 0.0, 0.0], "vec3", "velocity along East, North, Up, m/s: difference of positions "
+                  "between two ticks x the nominal frequency, as MORSE (a robot moved kinematically is seen "
+                  "moving)", level=RAW),
+        DataField("date", "000000", "str", "UTC date of the timestamp, DDMMYY", level="extended"),
+        DataField("time", "000000", "str", "UTC time of the timestamp, HHMMSS", level="extended"),
+        DataField("heading", 0.0, "float", "bearing of the sensor's x axis, degrees clockwise from true north "
+                  "in [0, 360); inf while the East and North velocities are both below 1e-6 m/s (not "
+                  "observable standing still)", level="extended"),
     )
 
     def default_action(self):

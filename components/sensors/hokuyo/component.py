@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
@@ -16,9 +14,9 @@ class Hokuyo(LaserScanner):
     frequency = 10.0
 
     class Properties(LaserScanner.Properties):
-        laser_range: float = Field(30.0, gt=0, description="detection range, m; can be changed while running")
-        scan_window: float = Field(270.0, ge=0, le=360, description="full angle covered, deg (fixed at start)")
-        resolution: float = Field(0.25, gt=0, description="angle between two rays, deg (fixed at start)")
+        laser_range: float = 30.0
+        scan_window: float = 270.0
+        resolution: float = 0.25
 
 
 COMPONENT = Hokuyo

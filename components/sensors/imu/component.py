@@ -1,13 +1,11 @@
 import datetime
 import math
 import logging
-from typing import Literal
 
 import mujoco
 import numpy as np
-from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 from morsec.kits.geometry import matrix_to_quat, transpose_apply
 from morsec.modifiers.noise import IMUNoise
@@ -35,18 +33,19 @@ class IMU(Sensor):
     frequency = 60.0
     modifiers = {"noise": IMUNoise, "imunoise": IMUNoise}
 
-    class Properties(ComponentProperties):
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+    class Properties(ComputationModeProperties):
+        pass
 
     data = (
-        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3<float>", "rates about the IMU's x, y, z axes, rad/s"),
-        DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3<float>",
-                  "specific force along the IMU's x, y, z axes, gravity included (+9.81 on z at rest), m/s^2"),
-        DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3<float>",
-                  "Earth's magnetic field (World Magnetic Model) in the IMU frame, nT; zero when the "
-                  "environment has no geodetic properties"),
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the IMU's x, y, z axes, rad/s"),
+        DataField("linear_acceleration", [0.0, 0.0, 0.0], "vec3",
+                  "specific force along the IMU's x, y, z axes, m/s^2, gravity included: an IMU at rest reads "
+                  "(0, 0, +9.81); mounted off the robot's centre it also feels the centripetal and tangential "
+                  "accelerations of the robot's rotation"),
+        DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3",
+                  "Earth's magnetic field in the IMU frame, nT, from the World Magnetic Model (see magnetometer) "
+                  "at the sensor's geodetic position and today's date; (0, 0, 0) when the environment has no "
+                  "longitude/latitude/altitude"),
     )
 
     def start(self):

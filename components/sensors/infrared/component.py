@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
@@ -15,10 +13,10 @@ class Infrared(LaserScanner):
     frequency = 10.0
 
     class Properties(LaserScanner.Properties):
-        laser_range: float = Field(2.0, gt=0, description="detection range, m; can be changed while running")
-        scan_window: float = Field(20.0, ge=0, le=360, description="full angle covered, deg (fixed at start)")
-        resolution: float = Field(1.0, gt=0, description="angle between two rays, deg (fixed at start)")
-        Visible_arc: bool = Field(True, description="MORSE shows the arc in the 3D view; accepted, no effect headless")
+        laser_range: float = 2.0
+        scan_window: float = 20.0
+        resolution: float = 1.0
+        Visible_arc: bool = True
 
 
 COMPONENT = Infrared

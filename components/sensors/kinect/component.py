@@ -2,10 +2,11 @@
 
 from pydantic import Field, model_validator
 
+from morsec.component import DataField, component_class
 from morsec.kits.camera import CameraProperties, CameraSensor, CameraView, b64
-from morsec.component import DataField
 
 IDENTITY = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+PARTS = {"rgb": "video_camera", "depth": "depth_video_camera"}  # each part of the message: that camera's message
 
 
 class Kinect(CameraSensor):
@@ -37,12 +38,26 @@ class Kinect(CameraSensor):
             return self
 
     data = (
-        DataField("rgb", {"image": None, "intrinsic_matrix": IDENTITY}, "video camera data",
+        DataField("rgb", {"image": None, "intrinsic_matrix": IDENTITY}, "dict",
                   "the RGB camera: image (cam_height x cam_width x 4 uint8 RGBA) and intrinsic_matrix"),
-        DataField("depth", {"image": None, "intrinsic_matrix": IDENTITY}, "depth camera data",
+        DataField("depth", {"image": None, "intrinsic_matrix": IDENTITY}, "dict",
                   "the depth camera: image (cam_height x cam_width float32, m along the optical axis; depth_far "
                   "where nothing was seen) and intrinsic_matrix"),
     )
+    # see message(): each camera's part is that camera's own message
+    message_fields = (
+        DataField("rgb", {}, "dict", "the RGB camera's picture, as a video_camera message"),
+        DataField("depth", {}, "dict", "the depth camera's picture, as a depth_video_camera message"),
+    )
+    @classmethod
+    def message_schema(cls, level=None) -> dict:
+        schema = super().message_schema(level)
+        for name, camera in PARTS.items():
+            part = component_class("sensors", camera).message_schema()
+            part.pop("title", None)
+            part["description"] = schema["properties"][name]["description"]
+            schema["properties"][name] = part
+        return schema
 
     def start(self) -> None:
         super().start()

@@ -67,7 +67,7 @@ def arc_directions(resolution: float, scan_window: float, layers: int = 1, layer
 
 class LaserScannerProperties(ComponentProperties):
     laser_range: float = Field(30.0, gt=0, description="distance from the sensor centre up to which objects are "
-                               "detected, m; can be changed while running")
+                               "detected, m; can be changed while running (set_property)")
     resolution: float = Field(1.0, gt=0, description="angle between two rays of a layer, deg (fixed at start)")
     scan_window: float = Field(180.0, ge=0, le=360, description="full angle covered by a layer, deg (fixed at start)")
     Visible_arc: bool = Field(False, description="MORSE shows the arc in the 3D view; accepted, no effect headless")
@@ -95,13 +95,13 @@ class LaserScanner(Sensor):
         Level("rssi", None, "point_list, range_list and remission_list (MORSE's RSSILaserScanner)"),
     )
     data = (
-        DataField("point_list", [], "list of [x, y, z]",
+        DataField("point_list", [], "list[vec3]",
                   "hit points in the sensor frame, m, one per ray in ray order; [0, 0, 0] when the ray hit "
                   "nothing within laser_range", level=("raw", "rssi")),
-        DataField("range_list", [], "list of float",
+        DataField("range_list", [], "list[float]",
                   "distance from the sensor centre to the first obstacle of each ray, m; laser_range when "
                   "the ray hit nothing", level=("raw", "rssi")),
-        DataField("remission_list", [], "list of float",
+        DataField("remission_list", [], "list[float]",
                   "remission of each hit, 0..1: the specular intensity of the hit geom's material (0.5, "
                   "MuJoCo's default, for a geom without material); 0 when the ray hit nothing", level="rssi"),
     )

@@ -16,8 +16,9 @@ class Odometry(Sensor):
     modifiers = {"noise": PoseNoise, "posenoise": PoseNoise, "odometrynoise": OdometryNoise}
     levels = (
         Level("raw", "RawOdometry", "distance travelled since the previous tick"),
-        Level("differential", None, "position and angle deltas since the previous tick"),
-        Level("integrated", "IntegratedOdometry", "pose and velocities in the initial sensor frame", default=True),
+        Level("differential", None, "position and angle deltas since the previous tick, in the initial sensor "
+              "frame"),
+        Level("integrated", "IntegratedOdometry", "pose relative to the initial pose, and velocities", default=True),
     )
     data = (
         DataField("dS", 0.0, "float", "3D distance travelled since the previous tick, m", level="raw"),
@@ -33,7 +34,8 @@ class Odometry(Sensor):
         DataField("yaw", 0.0, "float", "yaw relative to the initial orientation, rad", level="integrated"),
         DataField("pitch", 0.0, "float", "pitch relative to the initial orientation, rad", level="integrated"),
         DataField("roll", 0.0, "float", "roll relative to the initial orientation, rad", level="integrated"),
-        DataField("vx", 0.0, "float", "linear velocity along x of the sensor frame, m/s", level="integrated"),
+        DataField("vx", 0.0, "float", "linear velocity along x of the sensor frame, m/s: the previous -> current "
+                  "transform, in the previous sensor frame, x the nominal frequency", level="integrated"),
         DataField("vy", 0.0, "float", "linear velocity along y of the sensor frame, m/s", level="integrated"),
         DataField("vz", 0.0, "float", "linear velocity along z of the sensor frame, m/s", level="integrated"),
         DataField("wz", 0.0, "float", "angular velocity about z, rad/s", level="integrated"),

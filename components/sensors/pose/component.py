@@ -16,7 +16,7 @@ class Pose(Sensor):
         DataField("x", 0.0, "float", "x coordinate of the sensor, world frame, m"),
         DataField("y", 0.0, "float", "y coordinate of the sensor, world frame, m"),
         DataField("z", 0.0, "float", "z coordinate of the sensor, world frame, m"),
-        DataField("yaw", 0.0, "float", "rotation about z, rad"),
+        DataField("yaw", 0.0, "float", "rotation about z, rad: XYZ Euler angles of the sensor frame"),
         DataField("pitch", 0.0, "float", "rotation about y, rad"),
         DataField("roll", 0.0, "float", "rotation about x, rad"),
     )

@@ -14,13 +14,14 @@ class Proximity(Sensor):
     frequency = 12.0
 
     class Properties(ComponentProperties):
-        Range: float = Field(30.0, ge=0.0, description="detection radius around the robot's origin, m")
+        Range: float = Field(30.0, ge=0.0, description="detection radius around the robot's origin, m (MORSE's "
+                             "builder default; its core default is 100)")
         Track: str = Field("Robot_Tag", description="property the detected objects carry (or their Type)")
 
     data = (
-        DataField("near_objects", {}, "dict", "tracked objects within range: {name: distance from the robot's "
-                  "origin, m}"),
-        DataField("near_robots", {}, "dict", "deprecated alias of near_objects"),
+        DataField("near_objects", {}, "dict[str, float]", "tracked objects within range: {name: distance from the "
+                  "robot's origin, m}"),
+        DataField("near_robots", {}, "dict[str, float]", "deprecated alias of near_objects"),
     )
 
     def default_action(self):

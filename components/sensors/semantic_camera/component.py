@@ -7,12 +7,13 @@ import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import CameraProperties
+from morsec.kits.camera import INTRINSIC_MATRIX, CameraProperties
 from morsec.component import DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat
 
 SEEN_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)  # what a camera renders: geom groups 0-2
 HIDDEN_GROUP = 5  # where the carrying robot's geoms are parked while the occlusion rays are cast
+NO_EFFECT = "accepted for MORSE scripts, no effect: nothing is rendered"
 _SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], dtype=float)
 
 
@@ -32,20 +33,31 @@ class SemanticCamera(Sensor):
     frequency = 20.0
 
     class Properties(CameraProperties):
+        # the picture's size and lens give the field of view, read at every tick; nothing is rendered
+        cam_width: int = Field(256, ge=1, description="image width, pixels: with cam_height and the lens, the "
+                               "field of view (read at every tick)")
+        cam_height: int = Field(256, ge=1, description="image height, pixels (read at every tick)")
+        cam_focal: float = Field(35.0, gt=0, description="focal length, mm, for a 32 mm sensor across the larger "
+                                 "image side (read at every tick)")
+        Vertical_Flip: bool = Field(True, description=NO_EFFECT)
+        capturing: bool = Field(True, description=NO_EFFECT + " (MORSE's semantic camera ignores it too)")
+        retrieve_depth: bool = Field(False, description=NO_EFFECT)
+        retrieve_zbuffer: bool = Field(False, description=NO_EFFECT)
+        shadows: bool = Field(False, description=NO_EFFECT)
         relative: bool = Field(False, description="poses in the camera's frame (x forward, y left, z up) instead "
                                "of the world's")
-        noocclusion: bool = Field(False, description="do not check that something hides the object (faster, less "
-                                  "realistic)")
-        tag: str = Field("Object", description="objects tracked: those whose property of this name is true, or "
-                         "whose Type equals it")
+        noocclusion: bool = Field(False, description="do not check that something hides the object: skip the "
+                                  "occlusion ray (faster, less realistic)")
+        tag: str = Field("Object", description="objects tracked: robots and objects whose property of this name "
+                         "is true, or whose Type equals it")
 
     data = (
-        DataField("visible_objects", [], "list of objects",
-                  "the objects seen: {name (Label or object name), description (Description or ''), type (Type or "
-                  "''), position [x, y, z] m, orientation {x, y, z, w} quaternion}; world frame, or camera frame "
-                  "when relative"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
-                  "intrinsic calibration matrix of the camera, row major, pixels"),
+        DataField("visible_objects", [], "list[dict]",
+                  "one mapping per object seen, in scene order: {name (its Label property or its name), "
+                  "description (Description property or ''), type (Type property or ''), position [x, y, z] m, "
+                  "orientation {x, y, z, w} quaternion}: the object's origin and orientation in the world frame, "
+                  "or in the camera frame (x forward, y left, z up: the component's frame) when relative"),
+        INTRINSIC_MATRIX,
     )
 
     def start(self) -> None:

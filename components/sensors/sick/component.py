@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
@@ -15,9 +13,9 @@ class Sick(LaserScanner):
     frequency = 10.0
 
     class Properties(LaserScanner.Properties):
-        laser_range: float = Field(30.0, gt=0, description="detection range, m; can be changed while running")
-        scan_window: float = Field(180.0, ge=0, le=360, description="full angle covered, deg (fixed at start)")
-        resolution: float = Field(1.0, gt=0, description="angle between two rays, deg (fixed at start)")
+        laser_range: float = 30.0
+        scan_window: float = 180.0
+        resolution: float = 1.0
 
 
 COMPONENT = Sick

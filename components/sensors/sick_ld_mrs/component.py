@@ -1,5 +1,3 @@
-from pydantic import Field
-
 from morsec.component.catalogue import component_class
 
 LaserScanner = component_class("sensors", "laser_scanner")
@@ -17,12 +15,12 @@ class SickLDMRS(LaserScanner):
     frequency = 4.0
 
     class Properties(LaserScanner.Properties):
-        laser_range: float = Field(30.0, gt=0, description="detection range, m; can be changed while running")
-        scan_window: float = Field(100.0, ge=0, le=360, description="full angle covered by a layer, deg")
-        resolution: float = Field(0.25, gt=0, description="angle between two rays of a layer, deg")
-        layers: int = Field(4, ge=1, description="number of scanning planes")
-        layer_separation: float = Field(0.8, ge=0, description="elevation between two consecutive layers, deg")
-        layer_offset: float = Field(0.125, description="azimuth shift of the even layers (0, 2), deg")
+        laser_range: float = 30.0
+        scan_window: float = 100.0
+        resolution: float = 0.25
+        layers: int = 4
+        layer_separation: float = 0.8
+        layer_offset: float = 0.125
 
 
 COMPONENT = SickLDMRS

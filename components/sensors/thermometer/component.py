@@ -22,8 +22,8 @@ class Thermometer(Sensor):
         DefaultTemperature: float = Field(15.0, description="temperature without fire sources, Celsius")
         FireTemperature: float = Field(200.0, description="temperature of a fire source whose tag is not a "
                                        "number, Celsius")
-        Range: float = Field(float(sys.maxsize), ge=0.0, description="fire sources farther than this are "
-                             "ignored, m (default: no limit)")
+        Range: float = Field(float(sys.maxsize), ge=0.0, description="fire sources at this distance or "
+                             "farther are ignored, m (default sys.maxsize: no limit)")
         Alpha: float = Field(0.2, ge=0.0, description="attenuation with distance, 1/m")
 
     data = (

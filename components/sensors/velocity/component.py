@@ -1,13 +1,8 @@
-from typing import Literal
-
 import mujoco
 import numpy as np
-from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, Sensor
 from morsec.kits.geometry import matrix_to_quat
-
-VEC3 = "vec3<float>"
 
 
 class Velocity(Sensor):
@@ -20,15 +15,13 @@ class Velocity(Sensor):
     builder_name = "Velocity"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
-        ComputationMode: Literal["Automatic", "Velocity", "Position"] = Field(
-            "Automatic", description="Velocity: from the physics; Position: finite differences of the pose; "
-            "Automatic: Velocity for a robot moving under physics, Position otherwise")
+    class Properties(ComputationModeProperties):
+        pass
 
     data = (
-        DataField("linear_velocity", [0.0, 0.0, 0.0], VEC3, "velocity along the sensor's x, y, z axes, m/s"),
-        DataField("angular_velocity", [0.0, 0.0, 0.0], VEC3, "rates about the sensor's x, y, z axes, rad/s"),
-        DataField("world_linear_velocity", [0.0, 0.0, 0.0], VEC3, "velocity along the world x, y, z axes, m/s"),
+        DataField("linear_velocity", [0.0, 0.0, 0.0], "vec3", "velocity along the sensor's x, y, z axes, m/s"),
+        DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the sensor's x, y, z axes, rad/s"),
+        DataField("world_linear_velocity", [0.0, 0.0, 0.0], "vec3", "velocity along the world x, y, z axes, m/s"),
     )
 
     def start(self):

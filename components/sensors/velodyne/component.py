@@ -41,8 +41,9 @@ class Velodyne(DepthCamera):
     frequency = 20.0
 
     class Properties(DepthCamera.Properties):
-        rotation: float = Field(FOV_35MM, description="angle the camera turns after each tick, rad (default: the "
-                                "field of view of the default 35 mm lens, 2 atan(16/35) = 0.857 rad)")
+        rotation: float = Field(FOV_35MM, description="angle the camera turns after each tick, rad; negative turns "
+                                "right (default: the field of view of the default 35 mm lens, 2 atan(16/35) = "
+                                "0.857 rad)")
 
     def start(self) -> None:
         super().start()

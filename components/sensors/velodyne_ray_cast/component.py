@@ -35,10 +35,10 @@ class VelodyneRayCast(LaserScanner):
     frequency = 60.0
 
     class Properties(LaserScanner.Properties):
-        laser_range: float = Field(50.0, gt=0, description="detection range, m; can be changed while running")
+        laser_range: float = 50.0
         scan_window: float = Field(31.5, ge=0, le=360, description="vertical angle covered by the fan, deg")
         resolution: float = Field(0.5, gt=0, description="angle between two rays of the fan, deg")
-        Visible_arc: bool = Field(True, description="MORSE shows the arc in the 3D view; accepted, no effect headless")
+        Visible_arc: bool = True
 
     def ray_directions(self) -> np.ndarray:
         return super().ray_directions() @ fan_rotation().T

@@ -1,6 +1,7 @@
 """MORSE's VideoCamera: RGBA pictures rendered by MuJoCo's offscreen renderer (see morsec/camera.py)."""
 
-from morsec.kits.camera import CameraProperties, CameraSensor, CameraView, b64
+from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, CameraProperties, CameraSensor, CameraView,
+                                b64)
 from morsec.component import DataField
 
 
@@ -17,12 +18,13 @@ class VideoCamera(CameraSensor):
     Properties = CameraProperties
 
     data = (
-        DataField("image", None, "RGBA image",
-                  "the picture: cam_height x cam_width x 4 uint8 (RGBA, alpha 255), first row at the top unless "
-                  "Vertical_Flip is false; on the wire base64 of its cam_width * cam_height * 4 bytes"),
-        DataField("intrinsic_matrix", [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], "mat3<float>",
-                  "intrinsic calibration matrix, row major: [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], pixels"),
+        DataField("image", None, "base64",
+                  "the picture: cam_height x cam_width x 4 uint8, R G B A (alpha always 255), row after row: the "
+                  "first row is the top of the picture unless Vertical_Flip is false (OpenGL's order); on the wire "
+                  "base64 of its cam_width * cam_height * 4 bytes (MORSE's buffer)"),
+        INTRINSIC_MATRIX,
     )
+    message_fields = (*PICTURE_SIZE, *data)
 
     def start(self) -> None:
         super().start()

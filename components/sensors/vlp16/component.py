@@ -6,12 +6,13 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import (CameraSensor, CameraView, DepthCameraProperties, b64, depth_points, optical_rotation,
-                           parse_keep_list, pixel_rays)
-from morsec.component import DataField
+from morsec.component import DataField, component_class
+from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, CameraSensor, CameraView, b64, depth_points,
+                                optical_rotation, parse_keep_list, pixel_rays)
 
 CAMERAS = 3
 YAW_STEP = math.pi / 3.0  # camera i looks at azimuth (i - 1) * 60 deg: right, ahead, left
+DepthCamera = component_class("sensors", "depth_camera")
 VLP16_ROWS = "[1, 17, 34, 51, 68, 85, 102, 120, 137, 154, 171, 188, 205, 222, 239, 255]"
 
 
@@ -29,23 +30,24 @@ class VLP16(CameraSensor):
     builder_name = "VLP16_180"
     frequency = 10.0
 
-    class Properties(DepthCameraProperties):
+    class Properties(DepthCamera.Properties):
         cam_width: int = Field(512, ge=1, description="image width of each camera, pixels (read at start)")
         cam_height: int = Field(256, ge=1, description="image height of each camera, pixels (read at start)")
         cam_focal: float = Field(27.7, gt=0, description="focal length, mm (27.7: 60 degrees across 512 pixels)")
-        keep_list: str = Field(VLP16_ROWS, description="image rows kept in each picture (as delivered: from the "
-                               "bottom unless Vertical_Flip); empty: every row")
-        keep_resolution: bool = Field(True, description="one point per pixel of the kept rows, NaN where nothing "
-                                      "was seen; false: only the pixels that saw something")
+        keep_list: str = VLP16_ROWS
+        keep_resolution: bool = True
         master_camera: int = Field(1, ge=0, le=2, description="the camera (0 right, 1 middle, 2 left) in whose "
                                    "optical frame the points are given")
 
     data = (
-        DataField("points", None, "float32 points",
+        DataField("points", None, "base64",
                   "nb_points x 3 float32: x, y, z in the master camera's optical frame (x right, y down, z "
-                  "forward), m; camera 0's points first; on the wire base64 of nb_points * 12 bytes"),
+                  "forward), m; camera 0's points first, each camera's kept rows in keep_list order, each row "
+                  "left to right; on the wire base64 of nb_points * 12 bytes"),
         DataField("nb_points", 0, "int", "number of points (3 * cam_width * 16 with keep_resolution)"),
     )
+    # see message(): the size and the intrinsic matrix of each camera
+    message_fields = (*PICTURE_SIZE, *(f for f in data if f.name != "nb_points"), INTRINSIC_MATRIX)
 
     def start(self) -> None:
         super().start()
