@@ -442,3 +442,15 @@ def wait_until(predicate, timeout: float = 10.0, interval: float = 0.01, message
         if time.monotonic() > deadline:
             raise TimeoutError(f"{message} not met within {timeout}s")
         time.sleep(interval)
+
+
+def stream_client(harness, fqn: str) -> socket.socket:
+    """A client on a component's socket stream in an in-process simulation (morsec.testing.simulate), once
+    the simulation's loop has accepted it."""
+    port = harness.sim.middlewares["socket"].ports()[fqn]
+    client = socket.create_connection((HOST, port), timeout=5)
+    for _ in range(50):  # the loop accepts clients when it polls
+        harness.sim.poller.poll(0.01)
+        if any(s.listening for s in harness.sim.component(fqn).out_streams):
+            return client
+    raise AssertionError(f"{fqn}: the stream never accepted the client")

@@ -18,6 +18,7 @@ from morsec.component.catalogue import load_catalogue
 from morsec.component.fields import FIELD_TYPES, type_schema
 from morsec.errors import MorsecError
 from morsec.testing import simulate
+from runtime_helpers import stream_client
 
 ROOT = Path(__file__).resolve().parent.parent
 MESSAGES = ROOT / MESSAGES_DIR
@@ -121,14 +122,6 @@ STREAMS = {"robot.pose": ("pose", None), "robot.odometry": ("odometry", None),
            "robot.camera": ("video_camera", None)}
 
 
-def _connect(sim, fqn: str) -> socket.socket:
-    client = socket.create_connection(("127.0.0.1", sim.sim.socket_ports[fqn]), timeout=5)
-    for _ in range(50):  # the loop accepts clients when it polls
-        sim.sim.poller.poll(0.01)
-        if any(s.listening for s in sim.sim.component(fqn).socket_streams):
-            return client
-    raise AssertionError(f"{fqn}: the stream never accepted the client")
-
 
 def _last_line(client: socket.socket) -> bytes:
     client.settimeout(5.0)
@@ -151,7 +144,7 @@ def _validator(cid: str, level: str | None) -> jsonschema.Draft202012Validator:
 
 def test_stream_messages_of_running_sensors_validate(tmp_path):
     with simulate(SCENE, tmp_path) as sim:
-        clients = {fqn: _connect(sim, fqn) for fqn in STREAMS}
+        clients = {fqn: stream_client(sim, fqn) for fqn in STREAMS}
         sim.command("robot.motion", v=0.5, w=0.2)
         sim.run_for(0.5)
         messages = {fqn: json.loads(_last_line(client)) for fqn, client in clients.items()}

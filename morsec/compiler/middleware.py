@@ -6,9 +6,8 @@ from __future__ import annotations
 from morsec.middleware.base import StreamRequest
 from morsec.middleware.registry import middleware, middlewares
 from morsec.scene.manifest import ServiceEntry, StreamEntry
+from morsec.scene.models import StreamSpecBase
 
-# the stream options that are not an endpoint's (every middleware accepts them)
-_COMMON = {"middleware", "direction", "topic", "frame_id", "method", "path", "classpath"}
 
 
 def assign_streams(components: list[tuple[str, str, list]]) -> list[StreamEntry]:
@@ -16,7 +15,7 @@ def assign_streams(components: list[tuple[str, str, list]]) -> list[StreamEntry]
     requests: dict[str, list[StreamRequest]] = {}
     for fqn, direction, specs in sorted(components, key=lambda c: c[0]):
         for spec in specs:
-            options = {k: v for k, v in spec.model_dump(exclude_none=True).items() if k not in _COMMON}
+            options = {k: v for k, v in spec.model_dump(exclude_none=True).items() if k not in StreamSpecBase.model_fields}
             requests.setdefault(spec.middleware, []).append(
                 StreamRequest(fqn, spec.direction or direction, options))
     entries = []

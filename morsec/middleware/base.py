@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar, Protocol
 
+from pydantic import BaseModel
+
 from morsec.component.services import RequestHandler
 from morsec.middleware.poller import Poller
 
@@ -60,8 +62,9 @@ class Lockstep(Protocol):
 class Middleware:
     name: ClassVar[str]
     description: ClassVar[str] = ""
-    # the stream options this middleware reads (the IR's StreamSpec fields); others are refused at build
-    stream_options: ClassVar[tuple[str, ...]] = ()
+    # the stream options this middleware reads, beyond those every stream has (direction, topic ...): they
+    # become fields of the scene's StreamSpec (with their descriptions); another middleware's are refused
+    Options: ClassVar[type[BaseModel]] = BaseModel
     carries_services: ClassVar[bool] = False  # add_service(name) / add_interface(name) expose services on it
     # serves the simulation's own services (simulation, time, communication) whatever the scene says
     always_serves: ClassVar[bool] = False

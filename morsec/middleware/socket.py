@@ -3,7 +3,9 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Annotated, Any
+
+from pydantic import BaseModel, Field
 
 from morsec.component.services import service
 from morsec.constants import SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
@@ -16,7 +18,11 @@ from morsec.middleware.sync import SyncServer
 class Socket(Middleware):
     name = "socket"
     description = "MORSE's socket protocol: JSON lines on a TCP port per stream, services on port 4000"
-    stream_options = ("port",)
+
+    class Options(BaseModel):
+        port: Annotated[int, Field(ge=1, le=65535)] | None = Field(
+            None, description="socket: TCP port (default: allocated from 60000 in alphabetical order of names)")
+
     carries_services = True
     always_serves = True  # MORSE: the socket service port is always open
 

@@ -6,7 +6,9 @@ from __future__ import annotations
 import csv
 import json
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
+
+from pydantic import BaseModel, Field
 
 from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.socket_streams import _plain
@@ -15,7 +17,11 @@ from morsec.middleware.socket_streams import _plain
 class Text(Middleware):
     name = "text"
     description = "each message of a sensor appended to a file: key = value blocks, or CSV"
-    stream_options = ("file", "format")
+
+    class Options(BaseModel):
+        file: str | None = Field(None, description="text: output file (default from the component name)")
+        format: Literal["text", "csv"] | None = Field(None, description="text: 'text' (key = value blocks) or 'csv'")
+
 
     @classmethod
     def assign(cls, streams: list[StreamRequest]) -> list[dict[str, Any]]:

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, model_validator
+from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, create_model,
+                      model_validator)
 from pydantic_core import PydanticCustomError
 
 from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
@@ -68,20 +69,30 @@ def _stream_shorthand(value: Any) -> Any:
     return {"middleware": value} if isinstance(value, str) else value
 
 
-class StreamSpec(Strict):
+class StreamSpecBase(Strict):
     """A datastream binding (`add_stream(middleware, **kwargs)`)."""
 
     middleware: Middleware = Field(description="datastream middleware")
-    port: Annotated[int, Field(ge=1, le=65535)] | None = Field(
-        None, description="socket: TCP port (default: allocated from 60000 in alphabetical order of names)")
-    file: str | None = Field(None, description="text: output file (default from the component name)")
-    format: Literal["text", "csv"] | None = Field(None, description="text: 'text' (key = value blocks) or 'csv'")
     topic: str | None = Field(None, description="topic name, for middlewares that have topics")
     frame_id: str | None = Field(None, description="frame id, for middlewares that carry one")
     method: str | None = Field(None, description="serialisation method of a full binding [classpath, method, path]")
     path: str | None = Field(None, description="path of a full binding")
     classpath: str | None = Field(None, description="middleware class of a full binding")
     direction: Literal["IN", "OUT"] | None = Field(None, description="default: OUT for sensors, IN for actuators")
+
+
+def _stream_spec() -> type[StreamSpecBase]:
+    """StreamSpecBase plus the options each registered middleware declares (socket: port; text: file, format)."""
+    options: dict[str, Any] = {}
+    for name, cls in middlewares().items():
+        for option, info in cls.Options.model_fields.items():
+            if option in options or option in StreamSpecBase.model_fields:
+                raise ValueError(f"middleware {name!r} declares stream option {option!r}, which another has")
+            options[option] = (info.annotation, info)
+    return create_model("StreamSpec", __base__=StreamSpecBase, __module__=__name__, **options)
+
+
+StreamSpec = _stream_spec()
 
 
 # `streams: [socket]` is shorthand for `streams: [{middleware: socket}]`; the JSON Schema accepts both spellings

@@ -9,6 +9,7 @@ from morsec.component.catalogue import Catalogue, modifier_class
 from morsec.errors import SceneError, yaml_path
 from morsec.middleware.registry import middleware as middleware_class
 from morsec.middleware.registry import service_middlewares
+from morsec.scene.models import StreamSpec, StreamSpecBase
 from morsec.scene.naming import assign_names
 from morsec.scene.sourcemap import SourceMap
 
@@ -99,15 +100,11 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
                           env_properties)
 
 
-# options a stream may give whatever its middleware (MORSE scripts pass them along)
-_COMMON_STREAM_OPTIONS = {"middleware", "direction", "topic", "frame_id", "method", "path", "classpath"}
-
-
 def _check_stream_options(stream, path: tuple, fail) -> None:
     """An option that only another middleware reads (a `port` on a text stream) is an error, not ignored."""
-    declared = middleware_class(stream.middleware).stream_options
+    declared = tuple(middleware_class(stream.middleware).Options.model_fields)
     for option in sorted(stream.model_dump(exclude_none=True)):
-        if option not in _COMMON_STREAM_OPTIONS and option not in declared:
+        if option not in StreamSpecBase.model_fields and option not in declared:
             fail(path + (option,), f"{stream.middleware} streams have no option {option!r}"
                  + (f" (they take: {', '.join(declared)})" if declared else ""))
 
@@ -153,7 +150,6 @@ def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict, cat:
 
 
 def _add_stream(comp, cls, middleware: str) -> None:
-    from morsec.scene.models import StreamSpec
     if cls.exportable and not any(s.middleware == middleware for s in comp.streams):
         comp.streams.append(StreamSpec(middleware=middleware))
 

@@ -23,6 +23,7 @@ from morsec.component.catalogue import load_catalogue
 from morsec.errors import RuntimeFailure
 from morsec.component.services import Request
 from morsec.testing import simulate
+from runtime_helpers import stream_client
 
 CATALOGUE = load_catalogue(Path(__file__).parent)
 HEIGHT = 1.0  # of the fixed fake robot carrying the cameras
@@ -262,15 +263,6 @@ def test_a_second_capture_while_one_runs_fails(tmp_path):
         assert first == [("SUCCESS", None)]
 
 
-def _connect(sim, fqn: str) -> socket.socket:
-    port = sim.sim.middlewares["socket"].ports()[fqn]
-    client = socket.create_connection(("127.0.0.1", port), timeout=5)
-    for _ in range(50):  # the loop accepts clients when it polls
-        sim.sim.poller.poll(0.01)
-        if any(s.listening for s in sim.sim.component(fqn).out_streams):
-            return client
-    raise AssertionError("the stream never accepted the client")
-
 
 def _read_lines(client: socket.socket, timeout: float = 5.0) -> list[bytes]:
     """The complete lines sent so far (at least one)."""
@@ -290,7 +282,7 @@ def test_socket_message_is_morses_and_silent_when_not_capturing(tmp_path):
                          "properties: {cam_width: 8, cam_height: 6}}",
                          box("target", (4.5, 0.0, 1.0), (1.0, 1.0, 1.0)))
     with simulate(scene, tmp_path) as sim:
-        client = _connect(sim, "r.cam")
+        client = stream_client(sim, "r.cam")
         sim.step(3)
         line = _read_lines(client)[-1]  # the last picture
         message = json.loads(line)
@@ -415,7 +407,7 @@ def test_depth_camera_keep_resolution_and_socket_points(tmp_path):
                {{name: plain, type: depth_camera, properties: {{{size}}}}}"""
     wall = box("wall", (3.5, 0.0, 0.0), (1.0, 20.0, 2.0), (0.7, 0.7, 0.7))  # top edge at z = 1 (the camera's)
     with simulate(holder_scene(cams, wall, env="empty"), tmp_path) as sim:
-        client = _connect(sim, "r.organized")
+        client = stream_client(sim, "r.organized")
         sim.step(3)
         organized, plain = sim.data("r.organized"), sim.data("r.plain")
         assert organized["nb_points"] == 16 * 12
