@@ -90,3 +90,10 @@ class RotorcraftProperties(ComponentProperties):
     RollPitchDgain: float = Field(2.0, description="derivative gain of the roll and pitch control, 1/s")
     YawPgain: float = Field(12.0, description="proportional gain of the yaw control, 1/s^2")
     YawDgain: float = Field(6.0, description="derivative gain of the yaw control, 1/s")
+
+
+class GeomagneticDateProperties(ComponentProperties):
+    """Sensors of the Earth's magnetic field (magnetometer, IMU): the date the World Magnetic Model is taken at."""
+
+    date: float = Field(0.0, ge=0.0, description="date of the magnetic field as a decimal year (2025.5 is early "
+                        "July 2025); 0: the day the simulation starts")

@@ -3,7 +3,6 @@ and the World Magnetic Model field in the IMU frame."""
 
 from __future__ import annotations
 
-import datetime
 import math
 
 import numpy as np
@@ -86,16 +85,17 @@ robots:
   - name: r
     type: fake_robot
     components:
-      - {{name: imu, type: imu}}
-      - {{name: north, type: imu, rotate: [0.0, 0.0, 1.5707963267948966]}}
+      - {{name: imu, type: imu, properties: {{date: 2025.5}}}}
+      - {{name: north, type: imu, rotate: [0.0, 0.0, 1.5707963267948966], properties: {{date: 2025.5}}}}
+      - {{name: later, type: imu, properties: {{date: 2029.5}}}}
 """
     with simulate(text, tmp_path) as h:
         h.step()
-        imu, north = h.data("r.imu"), h.data("r.north")
-    today = datetime.date.today()
-    year = today.year + (today.timetuple().tm_yday - 1) / (366 if today.year % 4 == 0 else 365)
-    wmm = GeoMag(base_year=min(max(today.year, 2010), 2029)).calculate(
-        glat=lat, glon=lon, alt=alt / 1000, time=year, allow_date_outside_lifespan=True)
+        imu, north, later = h.data("r.imu"), h.data("r.north"), h.data("r.later")
+    wmm = GeoMag(base_year=2025).calculate(glat=lat, glon=lon, alt=alt / 1000, time=2025.5,
+                                           allow_date_outside_lifespan=True)
+    # the field drifts tens of nT a year: the date property is what the model is taken at
+    assert np.linalg.norm(np.subtract(later["magnetic_field"], imu["magnetic_field"])) > 20.0
     assert imu["magnetic_field"] == pytest.approx([wmm.y, wmm.x, -wmm.z], abs=5.0)
     assert north["magnetic_field"] == pytest.approx([wmm.x, -wmm.y, -wmm.z], abs=5.0)
     assert np.linalg.norm(imu["magnetic_field"]) == pytest.approx(wmm.f, rel=1e-4)

@@ -5,7 +5,7 @@ import logging
 import mujoco
 import numpy as np
 
-from morsec.component import ComputationModeProperties, DataField, Sensor
+from morsec.component import ComputationModeProperties, DataField, GeomagneticDateProperties, Sensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 from morsec.kits.geometry import matrix_to_quat, transpose_apply
 from morsec.modifiers.noise import IMUNoise
@@ -33,7 +33,7 @@ class IMU(Sensor):
     frequency = 60.0
     modifiers = {"noise": IMUNoise, "imunoise": IMUNoise}
 
-    class Properties(ComputationModeProperties):
+    class Properties(ComputationModeProperties, GeomagneticDateProperties):
         pass
 
     data = (
@@ -44,8 +44,8 @@ class IMU(Sensor):
                   "accelerations of the robot's rotation"),
         DataField("magnetic_field", [0.0, 0.0, 0.0], "vec3",
                   "Earth's magnetic field in the IMU frame, nT, from the World Magnetic Model (see magnetometer) "
-                  "at the sensor's geodetic position and today's date; (0, 0, 0) when the environment has no "
-                  "longitude/latitude/altitude"),
+                  "at the sensor's geodetic position and the `date` property (default: today); (0, 0, 0) when "
+                  "the environment has no longitude/latitude/altitude"),
     )
 
     def start(self):
@@ -94,7 +94,7 @@ class IMU(Sensor):
         if self.geo is None:
             return self.field
         if self.field_at is None or math.dist(pos, self.field_at) > RELOCATE_M:
-            self.field = field_in_scene(self.geo, pos, decimal_year(datetime.date.today())).tolist()
+            self.field = field_in_scene(self.geo, pos, self.properties.date or decimal_year(datetime.date.today())).tolist()
             self.field_at = pos
         return self.field
 

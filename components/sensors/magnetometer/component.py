@@ -1,9 +1,8 @@
 import datetime
 
 import numpy as np
-from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Sensor
+from morsec.component import DataField, GeomagneticDateProperties, Sensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 
 RELOCATE_M = 1000.0  # the field is recomputed when the sensor has moved this far
@@ -26,9 +25,8 @@ class Magnetometer(Sensor):
     builder_name = "Magnetometer"
     frequency = 60.0
 
-    class Properties(ComponentProperties):
-        date: float = Field(0.0, ge=0.0, description="date of the field as a decimal year (2025.5 is early "
-                            "July 2025); 0: the day the simulation starts")
+    class Properties(GeomagneticDateProperties):
+        pass
 
     data = (
         DataField("x", 0.0, "float", "northern component of the magnetic field, nT"),
