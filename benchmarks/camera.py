@@ -29,10 +29,10 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-import morsec  # noqa: E402,F401  (chooses MUJOCO_GL before mujoco is imported)
 import mujoco  # noqa: E402
-
 from timing import batch, compare  # noqa: E402  (benchmarks/timing.py)
+
+import morsec  # noqa: E402,F401  (chooses MUJOCO_GL before mujoco is imported)
 from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.middleware.socket_streams import encode  # noqa: E402
 from morsec.testing import simulate  # noqa: E402
@@ -114,7 +114,7 @@ def main(argv=None) -> int:
             compare(bare, cam.default_action, 2, 1)  # warm up
             t_bare, t_morsec = compare(bare, cam.default_action, args.frames, args.repeats)
             t_default = min(batch(bare_default, args.frames) for _ in range(2))
-            t_publish = min(batch(lambda: encode(cam.serialize()), args.frames) for _ in range(3))
+            t_publish = min(batch(lambda cam=cam: encode(cam.serialize()), args.frames) for _ in range(3))
             results[name] = (t_bare, t_morsec, t_default, t_publish)
             renderer.close()
 

@@ -30,6 +30,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from timing import batch, compare  # noqa: E402  (benchmarks/timing.py)
+
 from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.testing import simulate  # noqa: E402
 

@@ -36,8 +36,8 @@ import mujoco
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.app.project import build_scene  # noqa: E402
+from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
 
 SCENES = {}  # name -> (description, YAML, target ratio)

@@ -1,4 +1,3 @@
 from morsec.cli import main
 
-
 main()

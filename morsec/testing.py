@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import contextlib
 import math
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any
 
 import yaml
 
-from morsec.component.catalogue import load_catalogue
 from morsec.app.project import build_scene
+from morsec.component.catalogue import load_catalogue
 from morsec.runtime.simulation import RunOptions, Simulation
 
 
@@ -51,7 +52,7 @@ class Harness:
         """Call a component's service method directly (synchronous services)."""
         return getattr(self.component(fqn), service)(*args)
 
-    def client(self) -> "ServiceClient":
+    def client(self) -> ServiceClient:
         """A client sending service requests as one on the socket would (asynchronous ones, cancel)."""
         return ServiceClient(self)
 

@@ -140,7 +140,7 @@ class LineSocket:
             self.sock.settimeout(remaining)
             try:
                 chunk = self.sock.recv(65536)
-            except socket.timeout:
+            except TimeoutError:
                 continue
             if not chunk:
                 raise ConnectionError(f"connection closed by the server (have {self.buffer[:200]!r})")
@@ -267,7 +267,7 @@ class Morsec:
         self.eof_at: float | None = None
 
     # ---- lifecycle
-    def start(self) -> "Morsec":
+    def start(self) -> Morsec:
         env = dict(os.environ, PYTHONUNBUFFERED="1")
         self.proc = subprocess.Popen(self.command, cwd=self.cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                      text=True, env=env, start_new_session=True)
@@ -285,7 +285,7 @@ class Morsec:
             self.eof_at = time.monotonic()  # the process closed its stdout: it is exiting
             self._lines.put(None)
 
-    def wait_ready(self, timeout: float = START_TIMEOUT) -> "Morsec":
+    def wait_ready(self, timeout: float = START_TIMEOUT) -> Morsec:
         deadline = time.monotonic() + timeout
         while True:
             remaining = deadline - time.monotonic()
@@ -326,7 +326,7 @@ class Morsec:
         elif len(parts) >= 4 and parts[2] == "text":
             self.text_files.append((parts[0], Path(parts[3])))
 
-    def __enter__(self) -> "Morsec":
+    def __enter__(self) -> Morsec:
         self.start()
         try:
             return self.wait_ready()

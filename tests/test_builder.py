@@ -11,13 +11,13 @@ from pathlib import Path
 
 import pytest
 
-from morsec.cli.standalone import morsec_args
-from morsec.frontends.builder.script import record_script
-from morsec.component.catalogue import load_catalogue
 from morsec.app.project import build_scene
-from morsec.scene.walk import walk_components
+from morsec.cli.standalone import morsec_args
+from morsec.component.catalogue import load_catalogue
 from morsec.errors import MorsecError, SceneError
 from morsec.frontends import load_scene
+from morsec.frontends.builder.script import record_script
+from morsec.scene.walk import walk_components
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "scenes"

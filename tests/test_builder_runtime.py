@@ -4,9 +4,9 @@ its robots and components are discovered, its streams deliver, its services answ
 from pathlib import Path
 
 import pytest
+from runtime_helpers import Morsec  # noqa: E402
 
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
-from runtime_helpers import Morsec  # noqa: E402
 
 patch_pymorse()
 

@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 import yaml
 
-from morsec.component.catalogue import load_catalogue
-from morsec.compiler.build import compile_scene
 from morsec.app.convert import convert_scene, to_toml, to_yaml
+from morsec.compiler.build import compile_scene
+from morsec.component.catalogue import load_catalogue
 from morsec.errors import SceneError
 from morsec.frontends import load_scene
 

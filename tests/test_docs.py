@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from morsec.component.catalogue import load_catalogue
 from morsec.app.docsgen import GENERATED_PAGES, REGENERATE, generate
+from morsec.component.catalogue import load_catalogue
 from morsec.scene import models
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import jsonschema
 import pytest
+from runtime_helpers import stream_client
 
 from morsec.app.schemas import MESSAGES_DIR, REGENERATE, message_schema_files
 from morsec.component import DataField
@@ -18,7 +19,6 @@ from morsec.component.catalogue import load_catalogue
 from morsec.component.fields import FIELD_TYPES, type_schema
 from morsec.errors import MorsecError
 from morsec.testing import simulate
-from runtime_helpers import stream_client
 
 ROOT = Path(__file__).resolve().parent.parent
 MESSAGES = ROOT / MESSAGES_DIR

@@ -5,7 +5,6 @@ import json
 import os
 import subprocess
 import textwrap
-from pathlib import Path
 
 from runtime_helpers import MORSEC, robot, scene, scene_file
 

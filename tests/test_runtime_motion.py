@@ -9,7 +9,6 @@ import threading
 import time
 
 import pytest
-
 from runtime_helpers import LineSocket, Morsec, pose_sensor, robot, scene, scene_file, start_all, stop_all, wrap
 
 STRATEGIES = ["fixed_step", "best_effort"]

@@ -10,9 +10,21 @@ import math
 import time
 
 import pytest
-
-from runtime_helpers import (LineSocket, Morsec, free_port, occupy, parse_response, port_free, pose_sensor, robot,
-                             scene, scene_file, start_all, wait_until, wrap)
+from runtime_helpers import (
+    LineSocket,
+    Morsec,
+    free_port,
+    occupy,
+    parse_response,
+    port_free,
+    pose_sensor,
+    robot,
+    scene,
+    scene_file,
+    start_all,
+    wait_until,
+    wrap,
+)
 
 POSE_FIELDS = ["timestamp", "x", "y", "z", "yaw", "pitch", "roll"]
 ODO_FIELDS = ["timestamp", "x", "y", "z", "yaw", "pitch", "roll", "vx", "vy", "vz", "wz", "wy", "wx"]

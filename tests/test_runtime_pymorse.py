@@ -14,10 +14,9 @@ import textwrap
 import time
 
 import pytest
-
+from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, start_all, wait_until  # noqa: E402
 
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
-from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, start_all, wait_until  # noqa: E402
 
 patch_pymorse()
 

@@ -9,9 +9,7 @@ import struct
 import time
 
 import pytest
-
-from runtime_helpers import (HOST, LineSocket, Morsec, parse_response, pose_sensor, robot, scene, scene_file,
-                             wait_until)
+from runtime_helpers import HOST, LineSocket, Morsec, parse_response, pose_sensor, robot, scene, scene_file, wait_until
 
 
 @pytest.fixture(scope="module")

@@ -10,9 +10,21 @@ import time
 from pathlib import Path
 
 import pytest
-
-from runtime_helpers import (MORSEC, LineSocket, Morsec, build_folder, free_port, occupy, pose_sensor, robot,
-                             scene, scene_file, start_all, stop_all, wait_until)
+from runtime_helpers import (
+    MORSEC,
+    LineSocket,
+    Morsec,
+    build_folder,
+    free_port,
+    occupy,
+    pose_sensor,
+    robot,
+    scene,
+    scene_file,
+    start_all,
+    stop_all,
+    wait_until,
+)
 
 DT = 1.0 / 60
 
@@ -130,7 +142,8 @@ def test_lockstep(launch):
             for k in (5, 1, 3):
                 sync.send("step\n" * k)  # k lines in one write: k frames
                 target = t0 + k * DT
-                wait_until(lambda: client.ok("time", "now") >= target - 1e-9, timeout=10, message=f"{k} steps")
+                wait_until(lambda target=target: client.ok("time", "now") >= target - 1e-9, timeout=10,
+                           message=f"{k} steps")
                 time.sleep(0.2)
                 now = client.ok("time", "now")
                 assert now == pytest.approx(target, abs=1e-5), (k, now - t0)  # epoch-based: ~2e-7 resolution

@@ -20,9 +20,9 @@ from pathlib import Path
 import mujoco
 import pytest
 
-from morsec.component.catalogue import load_catalogue
 from morsec.app.project import build_scene
 from morsec.compiler.build import compile_scene
+from morsec.component.catalogue import load_catalogue
 from morsec.errors import SceneError
 from morsec.frontends import load_scene
 

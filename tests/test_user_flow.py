@@ -9,9 +9,9 @@ import textwrap
 from pathlib import Path
 
 import pytest
+from runtime_helpers import Morsec  # noqa: E402
 
 from morsec.pymorse_compat import patch_pymorse  # noqa: E402
-from runtime_helpers import Morsec  # noqa: E402
 
 MORSEC = Path(sys.executable).with_name("morsec")
 
@@ -83,9 +83,9 @@ def check_generated_components_declare_once(project: Path) -> None:
     """The scaffold follows the catalogue's rules: descriptions in code, typed fields (a valid message
     schema), a README of prose without the tables the code declares."""
     import jsonschema
+    from test_component_docs import DECLARED_HEADERS, tables
 
     from morsec.component.catalogue import load_catalogue
-    from test_component_docs import DECLARED_HEADERS, tables
     morsec("add", "robot", "rover_x", ".", "--description", "A rover", cwd=project)
     cat = load_catalogue(project)
     for kind, cid in (("sensors", "thermal_cam"), ("actuators", "gripper_x"), ("robots", "rover_x")):

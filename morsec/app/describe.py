@@ -6,7 +6,6 @@ from morsec.app.docsgen import component_section
 from morsec.component.catalogue import Catalogue, is_builtin
 from morsec.errors import MorsecError, did_you_mean
 
-
 KINDS = ("robots", "sensors", "actuators", "environments", "props")
 
 

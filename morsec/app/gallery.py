@@ -151,7 +151,8 @@ def _camera(model, data, kind: str):
     root = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
     points = []
     for g in range(model.ngeom):
-        if model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[root] and model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE:
+        same_root = model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[root]
+        if same_root and model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE:
             points.append(data.geom_xpos[g] + model.geom_rbound[g] * np.array([[1, 1, 1], [-1, -1, -1]]))
     pts = np.vstack(points) if points else np.zeros((1, 3))
     centre = (pts.max(axis=0) + pts.min(axis=0)) / 2

@@ -114,7 +114,8 @@ def add_component(kind: str, name: str, project: Path, description: str, force: 
     env = _env()
     ctx = {"name": name, "cls": camel_case(name), "description": description.replace('"', "'").strip()}
     # the template's text is the example: jinja2 renders only the names and description into it
-    plan = Plan({path: env.get_template(template).render(**ctx) for path, template in component_files(kind, name, root).items()})
+    files = component_files(kind, name, root)
+    plan = Plan({path: env.get_template(template).render(**ctx) for path, template in files.items()})
     written = plan.write(force)
     write_schema(root)
     return written

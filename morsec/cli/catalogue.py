@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -11,7 +11,7 @@ from morsec.cli.common import console, err_console, fail, on_terminal
 from morsec.errors import MorsecError
 
 
-def components(name: Annotated[Optional[str], typer.Argument(help="a component id or builder class name")] = None) -> None:
+def components(name: Annotated[str | None, typer.Argument(help="a component id or builder class name")] = None) -> None:
     """List the catalogue (built-in and this project's components), or describe one component."""
     from morsec.app.describe import catalogue_listing, describe_component
     from morsec.component.catalogue import load_catalogue
@@ -28,7 +28,8 @@ def components(name: Annotated[Optional[str], typer.Argument(help="a component i
 
 
 def docs(
-    out: Annotated[Path, typer.Option("-o", "--out", help="docs folder to write the generated pages into")] = Path("docs"),
+    out: Annotated[Path, typer.Option("-o", "--out", help="docs folder to write the generated pages into")] = (
+        Path("docs")),
     pictures: Annotated[bool, typer.Option(help="also render the gallery's pictures (slow: one scene each)")] = False,
 ) -> None:
     """Regenerate the reference pages (scene-format.md, components.md, the component gallery) from the

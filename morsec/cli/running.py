@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -16,21 +16,23 @@ from morsec.scene.models import TimeStrategy
 
 def run(
     scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
-    time_strategy: Annotated[Optional[TimeStrategy], typer.Option(
+    time_strategy: Annotated[TimeStrategy | None, typer.Option(
         "--time-strategy", help="best_effort follows the wall clock; fixed_step runs as fast as possible "
         "(default: the scene's)")] = None,
-    duration: Annotated[Optional[float], typer.Option(help="stop after this many simulated seconds")] = None,
-    time_scale: Annotated[Optional[float], typer.Option(help="simulated seconds per wall-clock second (best_effort)")] = None,
+    duration: Annotated[float | None, typer.Option(help="stop after this many simulated seconds")] = None,
+    time_scale: Annotated[float | None, typer.Option(
+        help="simulated seconds per wall-clock second (best_effort)")] = None,
     bind: Annotated[str, typer.Option(help="address the servers listen on")] = DEFAULT_BIND,
-    service_port: Annotated[Optional[int], typer.Option(
+    service_port: Annotated[int | None, typer.Option(
         help=f"service port (default {SERVICE_PORT}, else the next {SERVICE_PORT_ATTEMPTS} ports)")] = None,
-    port_base: Annotated[Optional[int], typer.Option(
+    port_base: Annotated[int | None, typer.Option(
         help=f"first stream port instead of {STREAM_PORT_BASE} (0: ports the OS picks; see the table or "
         "get_stream_port)")] = None,
-    seed: Annotated[Optional[int], typer.Option(help="random seed for noise (default: the scene's)")] = None,
-    out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
-    view: Annotated[Optional[ViewKind], typer.Option(
-        help="web: MuJoCo Studio's web viewer on --bind (prints the URL); native: mujoco.viewer (needs a display)")] = None,
+    seed: Annotated[int | None, typer.Option(help="random seed for noise (default: the scene's)")] = None,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+    view: Annotated[ViewKind | None, typer.Option(
+        help="web: MuJoCo Studio's web viewer on --bind (prints the URL); native: mujoco.viewer "
+        "(needs a display)")] = None,
     view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
@@ -56,7 +58,7 @@ def run(
 def render(
     scene: Annotated[Path, typer.Argument(help="scene file (.yaml, .toml, .py) or a build folder")],
     out: Annotated[Path, typer.Option("-o", "--out", help="PNG file to write")] = Path("scene.png"),
-    camera: Annotated[Optional[str], typer.Option(help="camera name (default: the environment's camera)")] = None,
+    camera: Annotated[str | None, typer.Option(help="camera name (default: the environment's camera)")] = None,
     width: Annotated[int, typer.Option(min=16, max=1920, help="image width, pixels")] = 800,
     height: Annotated[int, typer.Option(min=16, max=1080, help="image height, pixels")] = 600,
 ) -> None:

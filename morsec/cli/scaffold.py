@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 
@@ -29,7 +29,7 @@ def add(
     kind: Annotated[str, typer.Argument(help="sensor, actuator or robot")],
     name: Annotated[str, typer.Argument(help="component name (a Python identifier, e.g. thermal_cam)")],
     project: Annotated[Path, typer.Argument(help="the project folder")] = Path("."),
-    description: Annotated[Optional[str], typer.Option(help="one-line description (asked when omitted)")] = None,
+    description: Annotated[str | None, typer.Option(help="one-line description (asked when omitted)")] = None,
     force: Annotated[bool, typer.Option("--force", "-f", help="overwrite, or shadow a built-in")] = False,
 ) -> None:
     """Add a component to a project from the templates: its folder (component.py, README, model) and a test."""

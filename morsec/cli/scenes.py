@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
-from typing import Annotated, Optional
+from typing import Annotated
 
 import typer
 from rich.progress import track
@@ -15,7 +15,7 @@ from morsec.errors import MorsecError
 
 def build(
     scene: Annotated[Path, typer.Argument(help="scene file: .yaml, .yml, .toml or a builder script .py")],
-    out: Annotated[Optional[Path], typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
+    out: Annotated[Path | None, typer.Option("-o", "--out", help="build folder (default: build/<scene name>)")] = None,
 ) -> None:
     """Compile SCENE into a build folder: scene.xml, robots/*.urdf, middleware.json, manifest.json."""
     from morsec.app.project import build_scene, default_build_dir
@@ -45,7 +45,7 @@ def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to vali
 
 def schema(
     manifest: Annotated[bool, typer.Option("--manifest", help="the schema of a build's manifest.json instead")] = False,
-    messages: Annotated[Optional[Path], typer.Option(
+    messages: Annotated[Path | None, typer.Option(
         "--messages", help="instead, write the JSON Schema of each stream's message in this folder "
         "(<kind>/<id>.schema.json; the repository keeps them in schemas/messages)")] = None,
 ) -> None:

@@ -26,9 +26,17 @@ from morsec.compiler.urdf import expand_xacro, read_urdf
 from morsec.component.catalogue import Catalogue, is_builtin, level_class, modifier_class
 from morsec.errors import SceneError, yaml_path
 from morsec.kits.mjcf_names import belongs_to
-
-from morsec.scene.manifest import (BUILTIN_ROOT, FORMAT_VERSION, MANIFEST, ComponentEntry, ComponentRef, Loop,
-                                   Manifest, ModifierEntry, RobotEntry)
+from morsec.scene.manifest import (
+    BUILTIN_ROOT,
+    FORMAT_VERSION,
+    MANIFEST,
+    ComponentEntry,
+    ComponentRef,
+    Loop,
+    Manifest,
+    ModifierEntry,
+    RobotEntry,
+)
 from morsec.scene.walk import walk_components
 
 _NAME_PLACEHOLDER = "morsec__robot__name__placeholder"

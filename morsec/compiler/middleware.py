@@ -9,13 +9,13 @@ from morsec.scene.manifest import ServiceEntry, StreamEntry
 from morsec.scene.models import StreamSpecBase
 
 
-
 def assign_streams(components: list[tuple[str, str, list]]) -> list[StreamEntry]:
     """`components`: (fqn, default direction, the IR's stream specs) of every component."""
     requests: dict[str, list[StreamRequest]] = {}
     for fqn, direction, specs in sorted(components, key=lambda c: c[0]):
         for spec in specs:
-            options = {k: v for k, v in spec.model_dump(exclude_none=True).items() if k not in StreamSpecBase.model_fields}
+            given = spec.model_dump(exclude_none=True)
+            options = {k: v for k, v in given.items() if k not in StreamSpecBase.model_fields}
             requests.setdefault(spec.middleware, []).append(
                 StreamRequest(fqn, spec.direction or direction, options))
     entries = []

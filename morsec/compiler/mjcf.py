@@ -12,20 +12,20 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
-from markupsafe import Markup
 import numpy as np
+from markupsafe import Markup
 
 from morsec import __version__
+from morsec.compiler.assets import Assets, asset_dir
+from morsec.compiler.urdf import Link, expand_xacro, read_urdf
 from morsec.component.catalogue import Catalogue
 from morsec.errors import SceneError
-from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec
 from morsec.kits import mjcf_names
+from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec
 from morsec.kits.mjcf_names import part
 from morsec.resources import data_dir
 from morsec.scene.naming import join
 from morsec.scene.walk import walk_children, walk_components
-from morsec.compiler.assets import Assets, asset_dir
-from morsec.compiler.urdf import Link, expand_xacro, read_urdf
 
 SENSOR_WIDTH_MM = 32.0
 STAT_EXTENT = 10.0  # MuJoCo's model size statistic, fixed (it scales clip planes, haze, default views)

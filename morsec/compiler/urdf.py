@@ -52,7 +52,7 @@ class Link:
     inertial_pos: np.ndarray = field(default_factory=lambda: np.zeros(3))
     inertia: np.ndarray = field(default_factory=lambda: np.zeros(6))  # ixx iyy izz ixy ixz iyz
     geoms: list[Geom] = field(default_factory=list)
-    children: list["Link"] = field(default_factory=list)
+    children: list[Link] = field(default_factory=list)
 
     def walk(self):
         yield self

@@ -5,14 +5,31 @@ discovers component folders. Component authors import from here:
 """
 
 from morsec.component.catalogue import component_class
-from morsec.component.contract import (Actuator, Component, ComponentProperties, DataField, Device, Environment,
-                                       Level, Prop, Robot, RobotProperties, Sensor)
+from morsec.component.contract import (
+                                       Actuator,
+                                       Component,
+                                       ComponentProperties,
+                                       DataField,
+                                       Device,
+                                       Environment,
+                                       Level,
+                                       Prop,
+                                       Robot,
+                                       RobotProperties,
+                                       Sensor,
+)
 from morsec.component.fields import FIELD_TYPES
-from morsec.component.properties import (ComputationModeProperties, ControlTypeProperties,
-                                         GeomagneticDateProperties, RotorcraftProperties, WheeledRobotProperties)
+from morsec.component.properties import (
+                                       ComputationModeProperties,
+                                       ControlTypeProperties,
+                                       GeomagneticDateProperties,
+                                       RotorcraftProperties,
+                                       WheeledRobotProperties,
+)
 from morsec.component.services import ServiceInfo, async_service, service
 
 __all__ = ["Actuator", "Component", "ComponentProperties", "ComputationModeProperties", "ControlTypeProperties",
-           "DataField", "Device", "Environment", "FIELD_TYPES", "GeomagneticDateProperties", "Level", "Prop", "Robot", "RobotProperties",
-           "RotorcraftProperties", "Sensor", "ServiceInfo", "WheeledRobotProperties", "async_service",
+           "DataField", "Device", "Environment", "FIELD_TYPES", "GeomagneticDateProperties", "Level", "Prop", "Robot",
+           "RobotProperties", "RotorcraftProperties", "Sensor", "ServiceInfo", "WheeledRobotProperties",
+           "async_service",
            "component_class", "service"]

@@ -205,7 +205,8 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     cls = getattr(module, "COMPONENT", None)
     base = KINDS[kind]
     if not (isinstance(cls, type) and issubclass(cls, base)):
-        raise MorsecError(f"{folder / 'component.py'}: must set COMPONENT to a subclass of morsec.component.{base.__name__}")
+        raise MorsecError(f"{folder / 'component.py'}: must set COMPONENT to a subclass of "
+                          f"morsec.component.{base.__name__}")
     cls.id = cid
     cls.folder = folder
     if cls.builder_name is None:

@@ -25,6 +25,7 @@ from typing import Any, ClassVar
 
 import mujoco
 import numpy as np
+
 from morsec.component.fields import check_type, object_schema
 from morsec.component.properties import ComponentProperties, RobotProperties
 from morsec.component.services import ServiceInfo, service

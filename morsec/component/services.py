@@ -3,8 +3,9 @@ middleware hands to the runtime, and MORSE's answer statuses."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable, Protocol
+from typing import Any, Protocol
 
 SUCCESS, FAILED, PREEMPTED = "SUCCESS", "FAILED", "PREEMPTED"
 

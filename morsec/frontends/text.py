@@ -69,7 +69,8 @@ def _yaml_error(err: yaml.YAMLError, file: str, what: str) -> SceneError:
         problem = f"{context}, {problem}"  # "expected a single document in the stream, but found another document"
     line, col = (mark.line + 1, mark.column + 1) if mark else (None, None)
     start = getattr(err, "context_mark", None)
-    if context and context.startswith("while") and start is not None and (start.line + 1, start.column + 1) != (line, col):
+    elsewhere = start is not None and (start.line + 1, start.column + 1) != (line, col)
+    if context and context.startswith("while") and elsewhere:
         opened = re.sub(r"^while (parsing|scanning) ", "", context)
         problem = f"{problem} ({opened} started at line {start.line + 1}, column {start.column + 1})"
     return SceneError(f"{what}: {problem}", file, line, col)

@@ -26,7 +26,8 @@ from __future__ import annotations
 import base64
 import math
 import weakref
-from typing import Any, Callable, ClassVar
+from collections.abc import Callable
+from typing import Any, ClassVar
 
 import numpy as np
 from pydantic import Field, model_validator
@@ -160,7 +161,7 @@ class RendererPool:
         self.renderers.clear()
 
 
-_POOLS: "weakref.WeakKeyDictionary[Any, RendererPool]" = weakref.WeakKeyDictionary()
+_POOLS: weakref.WeakKeyDictionary[Any, RendererPool] = weakref.WeakKeyDictionary()
 
 
 def renderer_pool(sim) -> RendererPool:
@@ -209,7 +210,7 @@ class CameraView:
             raise ValueError(" ".join(err.message.split())) from None
 
     @classmethod
-    def of(cls, sim, camera: str, p: CameraProperties) -> "CameraView":
+    def of(cls, sim, camera: str, p: CameraProperties) -> CameraView:
         return cls(sim, camera, p.cam_width, p.cam_height, p.cam_focal, p.cam_fov)
 
     def _render(self, depth: bool, near: float, far: float, effects: bool) -> np.ndarray:

@@ -62,7 +62,7 @@ class GeoFrame:
     angle_against_north: float = 0.0
 
     @classmethod
-    def from_properties(cls, props: dict) -> "GeoFrame":
+    def from_properties(cls, props: dict) -> GeoFrame:
         missing = [k for k in ("longitude", "latitude", "altitude") if k not in props]
         if missing:
             raise ValueError("geodetic conversions need the environment properties longitude, latitude and "

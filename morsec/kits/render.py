@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 
 from morsec.errors import MorsecError, RuntimeFailure
-
 from morsec.kits.mjcf_names import DEFAULT_CAMERA
 
 

@@ -36,7 +36,8 @@ class JointServos:
         for name in self.names:
             act = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.part(prefix, name))
             if act < 0:
-                raise ValueError(f"joint {name!r} of {prefix} has no position servo named {mjcf_names.part(prefix, name)} in "
+                raise ValueError(f"joint {name!r} of {prefix} has no position servo named "
+                                 f"{mjcf_names.part(prefix, name)} in "
                                  "scene.xml (the component's actuator.xml.j2): rebuild the scene")
             acts.append(act)
         self.actuators = np.array(acts, dtype=int)

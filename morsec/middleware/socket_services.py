@@ -6,9 +6,9 @@ from __future__ import annotations
 import json
 import logging
 
+from morsec.component.services import FAILED, Request, RequestHandler
 from morsec.middleware.poller import Connection, Poller, Server
 from morsec.middleware.socket_streams import _plain, decode
-from morsec.component.services import FAILED, Request, RequestHandler
 
 log = logging.getLogger("morsec.middleware.services")
 
@@ -68,7 +68,8 @@ class ServiceServer(Server):
             try:
                 args = decode(tokens[3])
             except ValueError:
-                self._reply(conn, request_id, FAILED, f"malformed request: parameters are not valid JSON: {tokens[3][:80]!r}")
+                self._reply(conn, request_id, FAILED,
+                            f"malformed request: parameters are not valid JSON: {tokens[3][:80]!r}")
                 return
             if not isinstance(args, list):
                 self._reply(conn, request_id, FAILED, "malformed request: parameters must be a JSON array")

@@ -36,7 +36,7 @@ class Text(Middleware):
         super().__init__(context, settings)
         self.streams: list[TextStream] = []
 
-    def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> "TextStream":
+    def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> TextStream:
         if direction != "OUT":
             raise ValueError(f"{component}: the text middleware only writes sensor output")
         stream = TextStream(component, Path(self.context.output_dir) / endpoint["file"], endpoint["format"])

@@ -6,7 +6,6 @@ sensors due (compute, modify, publish) -> asynchronous services that completed."
 from __future__ import annotations
 
 import copy
-import json
 import logging
 import sys
 from dataclasses import dataclass, field
@@ -22,10 +21,10 @@ from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
 from morsec.runtime.clock import Clock, Periodic
-from morsec.runtime.robot import RobotHandle, free_joint, place
-from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 from morsec.runtime.requests import RequestManager
+from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
+from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
 log = logging.getLogger("morsec.runtime")
 
@@ -47,7 +46,7 @@ class RunOptions:
 
 @dataclass
 class ComponentContext:
-    sim: "Simulation"
+    sim: Simulation
     fqn: str
     body_id: int
     robot: RobotHandle
@@ -232,7 +231,8 @@ class Simulation:
                 self.middlewares[entry.middleware].open_services(entry.endpoint)
         except OSError as err:
             self.close()
-            raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: {err.strerror or err}") from None
+            raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: "
+                                 f"{err.strerror or err}") from None
         except (MorsecError, ValueError) as err:
             self.close()
             raise RuntimeFailure(str(err)) from None

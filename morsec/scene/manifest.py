@@ -28,7 +28,8 @@ class Entry(BaseModel):
 class ComponentRef(Entry):
     """Where a component class is: `<root>/<kind>/<id>/component.py`, class `name`."""
 
-    root: str = Field(description=f"'{BUILTIN_ROOT}' for a built-in component, else the catalogue folder's absolute path")
+    root: str = Field(description=f"'{BUILTIN_ROOT}' for a built-in component, else the catalogue folder's "
+                      "absolute path")
     kind: Literal["robots", "sensors", "actuators", "environments", "props"]
     id: str
     name: str = Field(description="the class declared by COMPONENT")

@@ -7,10 +7,18 @@ generated per catalogue by `morsec.scene.schema.scene_model`, as a union discrim
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal, Union
+from typing import Annotated, Any, Literal
 
-from pydantic import (AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, create_model,
-                      model_validator)
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    PrivateAttr,
+    create_model,
+    model_validator,
+)
 from pydantic_core import PydanticCustomError
 
 from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
@@ -57,7 +65,7 @@ Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
 Vec3 = Annotated[list[Number], Field(min_length=3, max_length=3)]
 Size3 = Annotated[list[Positive], Field(min_length=3, max_length=3)]
 Color = Annotated[list[Annotated[float, Field(ge=0, le=1)]], Field(min_length=3, max_length=4)]
-Basic = Union[bool, int, float, str]
+Basic = bool | int | float | str
 PropertyBag = dict[str, Basic]
 TimeStrategy = Literal["best_effort", "fixed_step"]
 # the registered middlewares (morsec.middleware.registry): a package that adds one extends these
@@ -96,7 +104,7 @@ StreamSpec = _stream_spec()
 
 
 # `streams: [socket]` is shorthand for `streams: [{middleware: socket}]`; the JSON Schema accepts both spellings
-Stream = Annotated[StreamSpec, BeforeValidator(_stream_shorthand, json_schema_input_type=Union[Middleware, StreamSpec])]
+Stream = Annotated[StreamSpec, BeforeValidator(_stream_shorthand, json_schema_input_type=Middleware | StreamSpec)]
 
 
 class ModifierSpec(Strict):
@@ -107,7 +115,7 @@ class ModifierSpec(Strict):
         description="modifier: " + ", ".join(MODIFIER_TABLE))
 
     @model_validator(mode="after")
-    def _known(self) -> "ModifierSpec":
+    def _known(self) -> ModifierSpec:
         if self.name not in MODIFIERS:
             raise PydanticCustomError("unknown_modifier", "unknown modifier {shown}{hint}",
                                       {"name": self.name, "shown": repr(self.name),
@@ -147,7 +155,7 @@ class ComponentBase(Strict):
     overlays: list[OverlaySpec] = Field(default_factory=list, description="add_overlay")
     color: Color | None = Field(None, description="set_color: RGB(A) in 0..1")
     profile: bool = Field(False, description="profile: report time spent in this component")
-    components: list["AnyComponent"] = Field(default_factory=list, description="children (append on a component)")  # noqa: F821 (defined below)
+    components: list[AnyComponent] = Field(default_factory=list, description="children (append on a component)")  # noqa: F821 (defined below)
 
 
 class RobotBase(Strict):
@@ -168,7 +176,7 @@ class RobotBase(Strict):
     physics_type: Literal["dynamic", "static", "rigid_body", "no_collision"] | None = Field(
         None, description="set_physics_type; static robots have no free joint")
     color: Color | None = Field(None, description="set_color")
-    components: list["AnyComponent"] = Field(default_factory=list, description="sensors and actuators")  # noqa: F821 (defined below)
+    components: list[AnyComponent] = Field(default_factory=list, description="sensors and actuators")  # noqa: F821 (defined below)
 
 
 class ObjectSpec(Strict):
@@ -184,7 +192,8 @@ class ObjectSpec(Strict):
     dynamic: bool = Field(False, description="True: moves under physics (needs a mass); False: static")
     mass: Positive = Field(1.0, description="kg, used when dynamic")
     properties: PropertyBag = Field(default_factory=dict,
-                                    description="game properties: Label, Description, Type, Object, Graspable, Fire, ...")
+                                    description="game properties: Label, Description, Type, Object, Graspable, "
+                                                "Fire, ...")
 
 
 class ZoneSpec(Strict):
@@ -249,7 +258,8 @@ class EnvironmentBase(Strict):
     properties: PropertyBag = Field(
         default_factory=dict, description="env.properties: longitude, latitude (deg), altitude (m), ...")
     services: list[ServiceMiddleware] = Field(
-        default_factory=list, description="add_service: middlewares exposing supervision services (socket is always on)")
+        default_factory=list,
+        description="add_service: middlewares exposing supervision services (socket is always on)")
     stream_managers: dict[Middleware, StreamManagerSpec] = Field(
         default_factory=dict, description="configure_stream_manager")
     multinode: MultinodeSpec | None = Field(None, description="configure_multinode")

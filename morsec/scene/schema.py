@@ -42,7 +42,9 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
         ))
     # A named type alias: pydantic makes it one definition that nested `components` refer to, so each
     # variant is generated once (a plain union would expand every variant inside every other one)
-    any_component = TypeAliasType("AnyComponent", Annotated[Union[tuple(device_variants)], Field(discriminator="type")])
+    # Union[tuple]: a union of the generated variants (the `X | Y` spelling cannot take a tuple)
+    variants = Union[tuple(device_variants)]  # noqa: UP007
+    any_component = TypeAliasType("AnyComponent", Annotated[variants, Field(discriminator="type")])
     namespace = {"AnyComponent": any_component}
 
     robot_variants = []
@@ -54,7 +56,7 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
             type=(_type_literal(cls), Field(description=f"{rid} ({cls.builder_name})")),
             properties=(props, Field(default_factory=props, description="robot properties")),
         ))
-    any_robot = Annotated[Union[tuple(robot_variants)], Field(discriminator="type")]
+    any_robot = Annotated[Union[tuple(robot_variants)], Field(discriminator="type")]  # noqa: UP007
 
     env_names = tuple(cat.ids("environments"))
     environment = create_model("Environment", __base__=m.EnvironmentBase, __module__=GENERATED_MODULE,

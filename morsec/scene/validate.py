@@ -17,12 +17,13 @@ from pydantic import BaseModel, ValidationError
 from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
-from morsec.scene.sourcemap import SourceMap
 from morsec.scene.resolve import add_robot_defaults, resolve
 from morsec.scene.schema import scene_model
+from morsec.scene.sourcemap import SourceMap
 
 VECTOR_KEYS = {"translate": "[x, y, z]", "rotate": "[x, y, z]", "location": "[x, y, z]",
-               "rotation": "[x, y, z]", "size": "[x, y, z]", "clip": "[near, far]", "color": "[r, g, b] or [r, g, b, a]"}
+               "rotation": "[x, y, z]", "size": "[x, y, z]", "clip": "[near, far]",
+               "color": "[r, g, b] or [r, g, b, a]"}
 
 
 def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
@@ -171,7 +172,8 @@ def _unknown_property(path: tuple, data: Any, cat: Catalogue) -> str:
     owner = f"{cls.kind} type {cls.id!r}" if cls is not None else f"type {type_name!r}"
     if not known:
         return f"unknown property {key!r}: {owner} has no properties"
-    return f"unknown property {key!r} of {owner} (properties: {', '.join(map(repr, known))}){did_you_mean(str(key), known)}"
+    listed = ", ".join(map(repr, known))
+    return f"unknown property {key!r} of {owner} (properties: {listed}){did_you_mean(str(key), known)}"
 
 
 def _bad_name(ctx: dict) -> str:

@@ -2,7 +2,8 @@
 with a _classpath. A classpath naming a catalogue component places that component. """
 
 from morse.builder import *
-from morse.builder.creator import SensorCreator, ActuatorCreator
+from morse.builder.creator import ActuatorCreator, SensorCreator
+
 
 class Mypose(SensorCreator):
     _classpath = "morse.sensors.pose.Pose"

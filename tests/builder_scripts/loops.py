@@ -1,8 +1,9 @@
 """ Several robots created in loops, the two ways MORSE's documentation describes (an explicit name, or
 AbstractComponent.close_context()) and the plain way (morsec names them like the first two). """
 
-from morse.builder import *
 from math import pi
+
+from morse.builder import *
 
 # explicit name in a loop: explorer, explorer_001, explorer_002
 for i in range(3):

@@ -7,6 +7,7 @@ The KUKA arm of the original is a Teleport actuator here, with a Pose sensor app
 
 from morse.builder import *
 
+
 class MyATRV(ATRV):
     def __init__(self, name=None):
         ATRV.__init__(self, name)

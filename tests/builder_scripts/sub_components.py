@@ -3,6 +3,7 @@ a class describing a robot, as MORSE's renaming test does. """
 
 from morse.builder import *
 
+
 class Carrier(ATRV):
     def __init__(self, name = None):
         ATRV.__init__(self, name)

@@ -205,7 +205,7 @@ def test_waypoint_remains_arrived_unless_asked_to_remain_at_destination(tmp_path
             wp = h.component("robot.motion")
             h.command("robot.motion", x=2.0, y=0.0, z=0.0, tolerance=0.2, speed=1.0)
             h.step()
-            run_until(h, lambda: wp.get_status() == "Arrived", timeout=5.0)
+            run_until(h, lambda wp=wp: wp.get_status() == "Arrived", timeout=5.0)
             h.run_for(0.2)
             # push it 1 m back
             pos, rot = h.body_pose("robot")

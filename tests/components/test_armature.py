@@ -12,8 +12,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from morsec.component.catalogue import load_catalogue
 from morsec.compiler.urdf import expand_xacro
+from morsec.component.catalogue import load_catalogue
 from morsec.testing import simulate
 
 ROOT = Path(__file__).resolve().parents[2]

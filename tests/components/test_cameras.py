@@ -17,13 +17,13 @@ import mujoco
 import numpy as np
 import pytest
 from pydantic import ValidationError
-
-from morsec.kits.camera import CameraProperties, focal_pixels, fovy_degrees, intrinsic_matrix, optical_rotation
-from morsec.component.catalogue import load_catalogue
-from morsec.errors import RuntimeFailure
-from morsec.component.services import Request
-from morsec.testing import simulate
 from runtime_helpers import stream_client
+
+from morsec.component.catalogue import load_catalogue
+from morsec.component.services import Request
+from morsec.errors import RuntimeFailure
+from morsec.kits.camera import CameraProperties, focal_pixels, fovy_degrees, intrinsic_matrix, optical_rotation
+from morsec.testing import simulate
 
 CATALOGUE = load_catalogue(Path(__file__).parent)
 HEIGHT = 1.0  # of the fixed fake robot carrying the cameras

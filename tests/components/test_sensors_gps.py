@@ -150,7 +150,7 @@ def test_gps_date_and_time_are_the_utc_timestamp(tmp_path):
     with simulate(text, tmp_path) as h:
         h.step()
         data = h.data("r.gps")
-    utc = datetime.datetime.fromtimestamp(data["timestamp"], tz=datetime.timezone.utc)
+    utc = datetime.datetime.fromtimestamp(data["timestamp"], tz=datetime.UTC)
     assert data["date"] == f"{utc.day:02d}{utc.month:02d}{utc.year % 100:02d}"
     assert data["time"] == f"{utc.hour:02d}{utc.minute:02d}{utc.second:02d}"
 

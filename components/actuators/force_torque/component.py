@@ -1,7 +1,7 @@
 import numpy as np
+from pydantic import Field
 
 from morsec.component import Actuator, ComponentProperties, DataField
-from pydantic import Field
 
 
 class ForceTorque(Actuator):

@@ -3,10 +3,17 @@
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties, b64, depth_points,
-                                parse_keep_list, pixel_rays)
-from morsec.component.catalogue import component_class
 from morsec.component import DataField
+from morsec.component.catalogue import component_class
+from morsec.kits.camera import (
+    INTRINSIC_MATRIX,
+    PICTURE_SIZE,
+    DepthCameraProperties,
+    b64,
+    depth_points,
+    parse_keep_list,
+    pixel_rays,
+)
 
 VideoCamera = component_class("sensors", "video_camera")
 

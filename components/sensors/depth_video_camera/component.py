@@ -1,8 +1,8 @@
 """MORSE's DepthVideoCamera: a depth image in metres."""
 
-from morsec.kits.camera import INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties
-from morsec.component.catalogue import component_class
 from morsec.component import DataField
+from morsec.component.catalogue import component_class
+from morsec.kits.camera import INTRINSIC_MATRIX, PICTURE_SIZE, DepthCameraProperties
 
 VideoCamera = component_class("sensors", "video_camera")
 

@@ -1,6 +1,6 @@
 import datetime
-import math
 import logging
+import math
 
 import mujoco
 import numpy as np
@@ -94,7 +94,8 @@ class IMU(Sensor):
         if self.geo is None:
             return self.field
         if self.field_at is None or math.dist(pos, self.field_at) > RELOCATE_M:
-            self.field = field_in_scene(self.geo, pos, self.properties.date or decimal_year(datetime.date.today())).tolist()
+            year = self.properties.date or decimal_year(datetime.date.today())
+            self.field = field_in_scene(self.geo, pos, year).tolist()
             self.field_at = pos
         return self.field
 

@@ -5,7 +5,6 @@ from morsec.kits.geometry import euler_of_xmat, normalize_angle, transpose_apply
 from morsec.modifiers.noise import OdometryNoise, PoseNoise
 
 
-
 class Odometry(Sensor):
     """Odometry of the sensor, at three levels of integration. Frames are the sensor's **initial**
     pose: the integrated level starts at 0 whatever the robot's start pose (as ROS's `odom`)."""
@@ -22,7 +21,8 @@ class Odometry(Sensor):
     )
     data = (
         DataField("dS", 0.0, "float", "3D distance travelled since the previous tick, m", level="raw"),
-        DataField("dx", 0.0, "float", "delta of x since the previous tick, initial sensor frame, m", level="differential"),
+        DataField("dx", 0.0, "float", "delta of x since the previous tick, initial sensor frame, m",
+                  level="differential"),
         DataField("dy", 0.0, "float", "delta of y, m", level="differential"),
         DataField("dz", 0.0, "float", "delta of z, m", level="differential"),
         DataField("dyaw", 0.0, "float", "delta of yaw, rad, normalised to [-pi, pi)", level="differential"),

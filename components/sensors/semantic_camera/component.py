@@ -7,8 +7,8 @@ import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import INTRINSIC_MATRIX, CameraProperties
 from morsec.component import DataField, Sensor
+from morsec.kits.camera import INTRINSIC_MATRIX, CameraProperties
 from morsec.kits.geometry import matrix_to_quat
 
 SEEN_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)  # what a camera renders: geom groups 0-2

@@ -6,8 +6,8 @@ import math
 import numpy as np
 from pydantic import Field
 
-from morsec.kits.camera import optical_rotation
 from morsec.component.catalogue import component_class
+from morsec.kits.camera import optical_rotation
 from morsec.kits.geometry import euler_to_quat
 
 DepthCamera = component_class("sensors", "depth_camera")

@@ -1,8 +1,7 @@
 """MORSE's VideoCamera: RGBA pictures rendered by MuJoCo's offscreen renderer (see morsec/camera.py)."""
 
-from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, CameraProperties, CameraSensor, CameraView,
-                                b64)
 from morsec.component import DataField
+from morsec.kits.camera import INTRINSIC_MATRIX, PICTURE_SIZE, CameraProperties, CameraSensor, CameraView, b64
 
 
 class VideoCamera(CameraSensor):

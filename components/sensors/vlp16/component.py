@@ -7,8 +7,17 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import DataField, component_class
-from morsec.kits.camera import (INTRINSIC_MATRIX, PICTURE_SIZE, CameraSensor, CameraView, b64, depth_points,
-                                optical_rotation, parse_keep_list, pixel_rays)
+from morsec.kits.camera import (
+    INTRINSIC_MATRIX,
+    PICTURE_SIZE,
+    CameraSensor,
+    CameraView,
+    b64,
+    depth_points,
+    optical_rotation,
+    parse_keep_list,
+    pixel_rays,
+)
 
 CAMERAS = 3
 YAW_STEP = math.pi / 3.0  # camera i looks at azimuth (i - 1) * 60 deg: right, ahead, left

@@ -10,13 +10,33 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from morsec.frontends.builder.components import (AbstractComponent, Actuator, ActuatorCreator, CatalogueProp, Component,
-                                       ComponentCreator, Cone, Cube, Cylinder, FakeRobot, GroundRobot, IcoSphere,
-                                       Mesh, PassiveObject, Plane, Robot, Sensor, SensorCreator, Sphere, Torus,
-                                       WheeledRobot, Zone)
+from morsec.component.catalogue import Catalogue
+from morsec.frontends.builder.components import (
+    AbstractComponent,
+    Actuator,
+    ActuatorCreator,
+    CatalogueProp,
+    Component,
+    ComponentCreator,
+    Cone,
+    Cube,
+    Cylinder,
+    FakeRobot,
+    GroundRobot,
+    IcoSphere,
+    Mesh,
+    PassiveObject,
+    Plane,
+    Robot,
+    Sensor,
+    SensorCreator,
+    Sphere,
+    Torus,
+    WheeledRobot,
+    Zone,
+)
 from morsec.frontends.builder.environment import Environment, TimeStrategies
 from morsec.frontends.builder.session import BuilderError, current_catalogue
-from morsec.component.catalogue import Catalogue
 
 MorseBuilderError = BuilderError
 

@@ -13,10 +13,10 @@ import os
 from pathlib import Path
 from typing import Any, ClassVar, get_args
 
-from morsec.frontends.builder import session as _session
-from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
 from morsec.component.catalogue import camel_case, project_root
 from morsec.errors import did_you_mean, one_of
+from morsec.frontends.builder import session as _session
+from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
 from morsec.modifiers.registry import MODIFIERS
 from morsec.scene import models
 
@@ -503,7 +503,8 @@ class AbstractComponent:
                 return cat.resolve(kind, module)
         names = sorted({n for kind in kinds for n in cat.names(kind)})
         raise self._session.error(
-            f"{type(self).__name__}: _classpath {text!r} names no component of the catalogue{did_you_mean(class_name, names)} "
+            f"{type(self).__name__}: _classpath {text!r} names no component of the catalogue"
+            f"{did_you_mean(class_name, names)} "
             "(morsec does not load MORSE's Python component classes: write the component as a folder "
             "components/<sensors|actuators>/<id>/component.py, see docs/builder.md)")
 
@@ -850,7 +851,8 @@ class PassiveObject(_Object):
         props = ", ".join(self._session.catalogue.names("props"))
         if found_file:
             raise self._session.error(f"{what}: found {found_file}, but morsec cannot load Blender assets (.blend) "
-                                      f"yet; use a catalogue prop ({props}) or a basic shape (Cube(), Cylinder(), Sphere())")
+                                      f"yet; use a catalogue prop ({props}) or a basic shape "
+                                      "(Cube(), Cylinder(), Sphere())")
         shown = ", ".join(str(p) for p in searched) or "(nothing)"
         raise self._session.error(f"{what}: no catalogue prop by that name ({props}) and no asset file found; "
                                   f"searched {shown} (add folders with MORSE_RESOURCE_PATH)")

@@ -18,12 +18,12 @@ from pathlib import Path
 
 from pydantic import BaseModel
 
+from morsec.component.catalogue import Catalogue, load_catalogue
+from morsec.errors import MorsecError, SceneError, did_you_mean
 from morsec.frontends.builder import builder_names
 from morsec.frontends.builder import session as _session
 from morsec.frontends.builder.hook import morse_import_hook
 from morsec.frontends.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
-from morsec.component.catalogue import Catalogue, load_catalogue
-from morsec.errors import MorsecError, SceneError, did_you_mean
 from morsec.scene.validate import validate_scene
 
 # recordings of scripts that ran as plain Python in this process (python mysim.py), by absolute path

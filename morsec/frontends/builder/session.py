@@ -12,9 +12,10 @@ from __future__ import annotations
 import inspect
 import os
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.constants import DUPLICATE_SUFFIX, SEPARATOR
@@ -40,11 +41,11 @@ def is_builder_file(filename: str) -> bool:
 
 # ---------------------------------------------------------------- the current session
 
-_stack: list["Session"] = []
-_standalone: "Session | None" = None
+_stack: list[Session] = []
+_standalone: Session | None = None
 
 
-def current(create: bool = True) -> "Session | None":
+def current(create: bool = True) -> Session | None:
     """The session recording now: the one `morsec` opened for a script, or (plain `python script.py`)
     a standalone one made on first use."""
     global _standalone
@@ -62,15 +63,15 @@ def current(create: bool = True) -> "Session | None":
 
 
 # what `python mysim.py` does at create(): set by the public `morsec.builder` (it hands the scene to the CLI)
-_standalone_handler: "Callable[[Session], None] | None" = None
+_standalone_handler: Callable[[Session], None] | None = None
 
 
-def on_standalone_create(handler: "Callable[[Session], None]") -> None:
+def on_standalone_create(handler: Callable[[Session], None]) -> None:
     global _standalone_handler
     _standalone_handler = handler
 
 
-def finish_standalone(session: "Session") -> None:
+def finish_standalone(session: Session) -> None:
     if _standalone_handler is None:
         sys.stderr.write("error: this script ran as plain Python without `morsec.builder`; "
                          "use `morsec build SCRIPT` or `from morsec.builder import *`\n")
@@ -78,11 +79,11 @@ def finish_standalone(session: "Session") -> None:
     _standalone_handler(session)
 
 
-def push(session: "Session") -> None:
+def push(session: Session) -> None:
     _stack.append(session)
 
 
-def pop(session: "Session") -> None:
+def pop(session: Session) -> None:
     if _stack and _stack[-1] is session:
         _stack.pop()
 
