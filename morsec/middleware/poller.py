@@ -7,6 +7,8 @@ import logging
 import selectors
 import socket
 
+from morsec.constants import MAX_PORT
+
 log = logging.getLogger("morsec.middleware")
 
 READ_CHUNK = 65536
@@ -44,7 +46,7 @@ class Poller:
 def listen(host: str, port: int, attempts: int = 1) -> socket.socket:
     """Bind a listening socket on port, port+1, ... (attempts tries); OSError when none is free."""
     last: OSError | None = None
-    for candidate in range(port, port + attempts):
+    for candidate in range(port, min(port + attempts, MAX_PORT + 1)):
         sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
@@ -148,7 +150,15 @@ class Server:
                 return
             conn = Connection(sock)
             self.clients.append(conn)
-            self.poller.register(sock, lambda s, c=conn: self._readable(c))
+            self.resume(conn)
+
+    def pause(self, conn: Connection) -> None:
+        """Stop reading from a client (until resume): what it sends waits in the kernel, then in its own
+        socket buffer."""
+        self.poller.unregister(conn.sock)
+
+    def resume(self, conn: Connection) -> None:
+        self.poller.register(conn.sock, lambda s, c=conn: self._readable(c))
 
     def _readable(self, conn: Connection) -> None:
         data = conn.receive()

@@ -5,14 +5,15 @@ from __future__ import annotations
 
 import json
 import logging
+from collections import deque
 
+from morsec.constants import MAX_QUEUED_ANSWERS, MAX_REQUEST_LINE, MAX_REQUESTS_PER_POLL
 from morsec.middleware.poller import Connection, Poller, Server
 from morsec.middleware.socket_streams import _plain, decode
 from morsec.services.requests import FAILED, Request, RequestManager
 
 log = logging.getLogger("morsec.middleware.services")
 
-MAX_REQUEST_LINE = 4 * 1024 * 1024
 MAX_ID = 80
 
 
@@ -24,32 +25,58 @@ def format_response(request_id: str, status: str, result) -> bytes:
 
 
 class ServiceServer(Server):
+    """Request lines wait in a per-client queue, served in order, at most MAX_REQUESTS_PER_POLL per client
+    and poll: a client that pipelines thousands of requests gets them answered in turn without delaying
+    the others, and is not read from while it has more than that waiting (TCP slows it down). Answers
+    wait in the client's output buffer; past MAX_QUEUED_ANSWERS bytes the client, which is not reading
+    them, is dropped."""
+
     def __init__(self, poller: Poller, requests: RequestManager, host: str, port: int, attempts: int):
         super().__init__(poller, host, port, attempts)
         self.requests = requests
         self.discarding: set[Connection] = set()
+        self.waiting: dict[Connection, deque[bytes]] = {}  # request lines not served yet
+        self.paused: set[Connection] = set()  # not read from until their waiting lines are served
 
     def received(self, conn: Connection, data: bytes) -> None:
         conn.inbuf += data
         *lines, conn.inbuf = conn.inbuf.split(b"\n")  # one pass, however many lines arrived
-        for line in lines:
-            if conn in self.discarding:
-                self.discarding.discard(conn)
-                continue
-            if len(line) > MAX_REQUEST_LINE:  # refused whether it came in one read or in many
-                request_id = _first_token(line)
-                if request_id:
-                    self._reply(conn, request_id, FAILED, f"request line longer than {MAX_REQUEST_LINE} bytes")
-                continue
-            self._request(conn, line)
-            if conn.closed:
-                return
+        if lines and conn in self.discarding:  # the end of a line refused already as too long
+            self.discarding.discard(conn)
+            lines = lines[1:]
+        if lines:
+            self.waiting.setdefault(conn, deque()).extend(lines)
         if len(conn.inbuf) > MAX_REQUEST_LINE:
             request_id = _first_token(conn.inbuf) if conn not in self.discarding else None
             if request_id:
                 self._reply(conn, request_id, FAILED, f"request line longer than {MAX_REQUEST_LINE} bytes")
             self.discarding.add(conn)
             conn.inbuf = b""
+        if not conn.closed:
+            self._serve(conn)
+
+    def _serve(self, conn: Connection) -> None:
+        lines = self.waiting.get(conn)
+        if lines is None:
+            return
+        for _ in range(min(len(lines), MAX_REQUESTS_PER_POLL)):
+            line = lines.popleft()
+            if len(line) > MAX_REQUEST_LINE:  # refused whether it came in one read or in many
+                request_id = _first_token(line)
+                if request_id:
+                    self._reply(conn, request_id, FAILED, f"request line longer than {MAX_REQUEST_LINE} bytes")
+            else:
+                self._request(conn, line)
+            if conn.closed:
+                return
+        if lines and conn not in self.paused:
+            self.paused.add(conn)
+            self.pause(conn)
+        elif not lines:
+            del self.waiting[conn]
+            if conn in self.paused:
+                self.paused.discard(conn)
+                self.resume(conn)
 
     def _request(self, conn: Connection, raw: bytes) -> None:
         text = raw.decode("utf-8", errors="replace").strip()
@@ -67,8 +94,9 @@ class ServiceServer(Server):
         if len(tokens) == 4:
             try:
                 args = decode(tokens[3])
-            except ValueError:
-                self._reply(conn, request_id, FAILED, f"malformed request: parameters are not valid JSON: {tokens[3][:80]!r}")
+            except ValueError as err:
+                self._reply(conn, request_id, FAILED,
+                            f"malformed request: parameters are not valid JSON ({err}): {tokens[3][:80]!r}")
                 return
             if not isinstance(args, list):
                 self._reply(conn, request_id, FAILED, "malformed request: parameters must be a JSON array")
@@ -85,8 +113,18 @@ class ServiceServer(Server):
             line = format_response(request_id, FAILED, f"result cannot be serialised: {err}")
         if not conn.send(line):
             self.drop(conn)
+        elif len(conn.outbuf) > MAX_QUEUED_ANSWERS:
+            log.warning("dropped a service client that does not read its answers (more than %d bytes waiting)",
+                        MAX_QUEUED_ANSWERS)
+            self.drop(conn)
 
     def flush(self) -> None:
+        """Serve the request lines that wait (a share of each client's), then send the answers that wait."""
+        for conn in list(self.waiting):
+            self._serve(conn)
+        self._send_answers()
+
+    def _send_answers(self) -> None:
         for conn in list(self.clients):
             if conn.outbuf and not conn.flush():
                 self.drop(conn)
@@ -94,9 +132,11 @@ class ServiceServer(Server):
     def dropped(self, conn: Connection) -> None:
         self.requests.drop_client(conn)
         self.discarding.discard(conn)
+        self.waiting.pop(conn, None)
+        self.paused.discard(conn)
 
     def close(self) -> None:
-        self.flush()
+        self._send_answers()
         super().close()
 
 

@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import csv
 import json
+import logging
 from pathlib import Path
 
 from morsec.middleware.socket_streams import _plain
+
+log = logging.getLogger("morsec.middleware.text")
 
 
 class TextStream:
@@ -21,8 +24,22 @@ class TextStream:
         self.header: list[str] | None = None
 
     listening = True
+    failed = False  # a write failed (full disk ...): the stream has stopped
 
     def write(self, local_data: dict) -> None:
+        """Append one message; when the file cannot be written (full disk, quota, device gone), warn once
+        and stop this stream: the simulation goes on."""
+        if self.failed:
+            return
+        try:
+            self._write(local_data)
+        except OSError as err:
+            self.failed = True
+            log.warning("%s: text stream stopped, cannot write %s: %s", self.component, self.path,
+                        err.strerror or err)
+            self.close()
+
+    def _write(self, local_data: dict) -> None:
         if self.csv is not None:
             if self.header is None:
                 self.header = list(local_data)
@@ -36,7 +53,10 @@ class TextStream:
         self.file.flush()
 
     def close(self) -> None:
-        self.file.close()
+        try:
+            self.file.close()  # flushes: may fail like a write
+        except OSError:
+            pass
 
 
 def _cell(value) -> str:
