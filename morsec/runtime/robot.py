@@ -5,6 +5,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from morsec.constants import MAX_FORCE, MAX_POSITION, MAX_SPEED
 from morsec.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
 
@@ -17,9 +18,21 @@ def free_joint(model, body: int) -> tuple[int, int] | None:
     return None
 
 
+def bounded(values, limit: float, what: str) -> np.ndarray:
+    """`values` as an array of floats, or ValueError when one is not finite or beyond ±limit: what a
+    request asks for is checked before it reaches MuJoCo's state (an absurd value there makes MuJoCo
+    warn "Nan, Inf or huge value" and give up on the step)."""
+    array = np.asarray(values, dtype=float)
+    if not np.all(np.abs(array) <= limit):  # NaN fails the comparison too
+        shown = np.array2string(array, threshold=6, precision=6)
+        raise ValueError(f"{what} must be finite and within ±{limit:g}, got {shown}")
+    return array
+
+
 def place(model, data, body: int, pos, rot) -> None:
     """Put a body (a robot's base or a passive object) at a world pose and stop it: through its free joint,
     or by moving a static body in the model."""
+    pos = bounded(pos, MAX_POSITION, "a position (m)")
     joint = free_joint(model, body)
     if joint is not None:
         adr, dof = joint
@@ -57,6 +70,8 @@ class RobotHandle:
         physics steps (ground robots keep vertical velocity, roll and pitch from physics). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
         d = self.sim.data
+        linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
+        angular = bounded(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
             if self.servo:
                 d.ctrl[self.servo] = 0.0
@@ -155,7 +170,8 @@ class RobotHandle:
         centre of mass; the contributions of several actuators add up. Stays applied until changed."""
         if not hasattr(self, "_wrenches"):
             self._wrenches: dict[str, np.ndarray] = {}
-        self._wrenches[key] = np.concatenate([np.asarray(force, float), np.asarray(torque, float)])
+        self._wrenches[key] = np.concatenate([bounded(force, MAX_FORCE, "a force (N)"),
+                                              bounded(torque, MAX_FORCE, "a torque (N m)")])
         self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
 
 
@@ -211,10 +227,10 @@ class JointServos:
     def command(self, setpoint, velocity=None) -> None:
         """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given)."""
         d = self.sim.data
-        self.setpoint = np.asarray(setpoint, dtype=float).copy()
+        self.setpoint = bounded(setpoint, MAX_POSITION, "a joint setpoint (rad or m)").copy()
         ff = d.qfrc_bias[self.dof].copy()
         if velocity is not None:
-            ff += self.kv * np.asarray(velocity, dtype=float)
+            ff += self.kv * bounded(velocity, MAX_SPEED, "a joint speed (rad/s or m/s)")
         d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)
 
     def teleport(self, values, which=None) -> None:
@@ -222,7 +238,7 @@ class JointServos:
         indices `which` (`values` then gives theirs, in that order)."""
         d = self.sim.data
         which = np.arange(len(self.names)) if which is None else np.asarray(which, dtype=int)
-        values = np.asarray(values, dtype=float)
+        values = bounded(values, MAX_POSITION, "a joint position (rad or m)")
         d.qpos[self.qpos[which]] = values
         d.qvel[self.dof[which]] = 0.0
         mujoco.mj_kinematics(self.sim.model, d)

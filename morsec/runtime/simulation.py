@@ -17,8 +17,8 @@ import mujoco
 import numpy as np
 
 from morsec.catalogue import Catalogue, level_class
-from morsec.constants import SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
-from morsec.errors import RuntimeFailure
+from morsec.constants import MAX_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.poller import Poller
 from morsec.middleware.socket_services import ServiceServer
 from morsec.middleware.socket_streams import SocketStream, encode
@@ -27,13 +27,14 @@ from morsec.middleware.text import TextStream
 from morsec.modifiers.registry import modifier_class
 from morsec.runtime.clock import Clock, Periodic
 from morsec.runtime.robot import RobotHandle, free_joint, place
-from morsec.scene.models import StreamSpec
+from morsec.scene.models import StreamSpec, check_output_file
 from morsec.services.requests import RequestManager
 from morsec.services.supervision import Communication, Supervision, TimeServices
 
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 
 
 @dataclass
@@ -133,8 +134,11 @@ class Simulation:
         env = self.scene["environment"]
         loop = manifest["loop"]
         self.substeps = int(loop["physics_substeps"])
-        self.clock = Clock(float(loop["frequency"]), self.options.strategy or env["time"]["strategy"],
-                           self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
+        try:
+            self.clock = Clock(float(loop["frequency"]), self.options.strategy or env["time"]["strategy"],
+                               self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
+        except ValueError as err:  # a build folder written by hand, or by an older morsec
+            raise RuntimeFailure(f"{build_dir}: {err}") from None
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
         self.dynamics = True
@@ -157,6 +161,7 @@ class Simulation:
                            dict(z["properties"])) for z in self.scene["zones"]]
         self.initial_state = (self.data.qpos.copy(), self.data.qvel.copy(), self.data.act.copy(),
                               self.model.body_pos.copy(), self.model.body_quat.copy())
+        self.stability = Stability(self.model, self.data, self.initial_state[0])
         for comp in self.components:
             try:
                 comp.instance.start()
@@ -225,13 +230,15 @@ class Simulation:
                         port = 0
                     elif opts.port_base is not None and not stream["explicit_port"]:
                         port = opts.port_base + (port - STREAM_PORT_BASE)
+                        if port > MAX_PORT:
+                            raise MorsecError(f"--port-base {opts.port_base} puts the stream of {comp.fqn} on port "
+                                              f"{port}, beyond {MAX_PORT}: choose a lower --port-base")
                     server = SocketStream(self.poller, comp.fqn, stream["direction"], opts.bind, port, hint_only=True)
                     comp.socket_streams.append(server)
                     self.socket_ports[comp.fqn] = server.port
                 elif stream["middleware"] == "text":
                     if stream["direction"] == "OUT":
-                        comp.text_streams.append(TextStream(comp.fqn, Path(opts.output_dir) / stream["file"],
-                                                            stream["serializer"]))
+                        comp.text_streams.append(self._text_stream(comp.fqn, stream))
             for fqn, middlewares in middleware["services"].items():
                 if "socket" in middlewares:
                     comp = self.by_name[fqn]
@@ -241,9 +248,22 @@ class Simulation:
             self.service_server = ServiceServer(self.poller, self.requests, opts.bind, port, attempts)
             sync = middleware["stream_managers"].get("socket", {})
             self.sync = SyncServer(self.poller, opts.bind, sync["sync_port"]) if sync.get("time_sync") else None
+        except MorsecError:
+            self.close()
+            raise
         except OSError as err:
             self.close()
             raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: {err.strerror or err}") from None
+
+    def _text_stream(self, fqn: str, stream: dict) -> TextStream:
+        try:
+            path = Path(self.options.output_dir) / check_output_file(stream["file"])
+        except ValueError as err:  # a middleware.json written by hand or by an older morsec
+            raise RuntimeFailure(f"{fqn}: text stream file {stream['file']!r}: {err}; rebuild the scene") from None
+        try:
+            return TextStream(fqn, path, stream["serializer"])
+        except OSError as err:
+            raise RuntimeFailure(f"{fqn}: cannot open the text stream's file {path}: {err.strerror or err}") from None
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
@@ -373,18 +393,20 @@ class Simulation:
         import time
         end = time.perf_counter() + delay
         while delay > 0 and not self.quitting:
-            self.poller.poll(delay)
+            self.poller.poll(min(delay, MAX_POLL_WAIT))
             self.service_server.flush()
             delay = end - time.perf_counter()
 
     def step(self) -> None:
         m, d = self.model, self.data
         t = self.clock.elapsed
+        self.stability.remember(d)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
         if self.dynamics:
             mujoco.mj_step(m, d, nstep=self.substeps)
+            self.stability.check(m, d)
         else:
             d.qvel[:] = 0.0
             mujoco.mj_forward(m, d)
@@ -474,6 +496,64 @@ class Simulation:
             self.sync.close()
             self.sync = None
         self.poller.close()
+
+
+class Stability:
+    """MuJoCo resets the whole world (every robot back to its start) when a value of its state is NaN, Inf
+    or huge. That reset is turned off; instead, after a frame that made MuJoCo warn, only the robots and
+    objects whose state went bad are put back where they were before the frame, at rest, and the others
+    keep what the frame did to them. Per frame: two array copies and three counters read."""
+
+    WARNINGS = (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC)
+
+    def __init__(self, model, data, initial_qpos: np.ndarray):
+        model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
+        self.initial_qpos = initial_qpos
+        self.qpos = data.qpos.copy()  # the state before the frame
+        self.qvel = data.qvel.copy()
+        self.warnings = self._count(data)
+        self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
+        for j in range(model.njnt):
+            end = model.jnt_qposadr[j + 1] if j + 1 < model.njnt else model.nq
+            self.qpos_root[model.jnt_qposadr[j]:end] = model.body_rootid[model.jnt_bodyid[j]]
+        self.dof_root = model.body_rootid[model.dof_bodyid].astype(int)
+        self.reported: set[int] = set()
+
+    def _count(self, data) -> int:
+        return sum(data.warning[w].number for w in self.WARNINGS)
+
+    def remember(self, data) -> None:
+        np.copyto(self.qpos, data.qpos)
+        np.copyto(self.qvel, data.qvel)
+
+    def check(self, model, data) -> None:
+        count = self._count(data)
+        if count != self.warnings:
+            self.warnings = count
+            self.recover(model, data)
+
+    def recover(self, model, data) -> None:
+        bad_roots = set(self.qpos_root[~_sane(data.qpos)].tolist())
+        bad_roots |= set(self.dof_root[~(_sane(data.qvel) & _sane(data.qacc))].tolist())
+        for root in sorted(bad_roots):
+            qpos = self.qpos_root == root
+            previous = self.qpos[qpos]
+            data.qpos[qpos] = previous if np.all(_sane(previous)) else self.initial_qpos[qpos]
+            dofs = self.dof_root == root
+            data.qvel[dofs] = 0.0
+            data.qacc_warmstart[dofs] = 0.0
+            data.xfrc_applied[model.body_rootid == root] = 0.0
+            if root not in self.reported:  # once: a command that keeps doing it would fill the log
+                self.reported.add(root)
+                log.warning("%s: its state became unstable (NaN, Inf or huge values): put back where it was "
+                            "before the frame, at rest", mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, root))
+        data.qacc_warmstart[~_sane(data.qacc_warmstart)] = 0.0
+        mujoco.mj_forward(model, data)
+
+
+def _sane(values: np.ndarray) -> np.ndarray:
+    """Which values MuJoCo accepts in its state (finite, within mjMAXVAL)."""
+    return np.abs(values) <= mujoco.mjMAXVAL
 
 
 def _services_of(obj) -> dict:
