@@ -15,7 +15,7 @@ from typing import Any
 from pydantic import BaseModel, ValidationError
 
 from morsec.catalogue import Catalogue, load_catalogue
-from morsec.constants import FORBIDDEN_NAME_CHARS
+from morsec.constants import FORBIDDEN_NAME_CHARS, MAX_SCENE_BYTES
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
 from morsec.scene.positions import SourceMap, parse_toml, parse_yaml
 from morsec.scene.resolve import add_robot_defaults, resolve
@@ -29,25 +29,40 @@ VECTOR_KEYS = {"translate": "[x, y, z]", "rotate": "[x, y, z]", "location": "[x,
 
 def read_scene_file(path: Path) -> tuple[Any, SourceMap]:
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneError(f"{path}: no such scene file") from None
-    except IsADirectoryError:
-        raise SceneError(f"{path}: is a folder, not a scene file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SceneError(f"{path}: cannot read: {err}") from None
     suffix = path.suffix.lower()
+    if suffix not in YAML_SUFFIXES + TOML_SUFFIXES:
+        if path.is_dir():
+            raise SceneError(f"{path}: is a folder, not a scene file")
+        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
+    text = _read_text(path)
     if suffix in YAML_SUFFIXES:
         data, smap = parse_yaml(text, str(path))
-    elif suffix in TOML_SUFFIXES:
-        data, smap = parse_toml(text, str(path))
     else:
-        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
+        data, smap = parse_toml(text, str(path))
     if not isinstance(data, dict):
         raise SceneError(f"a scene must be a mapping with environment, robots, objects and zones, got "
                          f"{_describe(data)}", str(path), 1, 1)
     return data, smap
+
+
+def _read_text(path: Path) -> str:
+    """The file's text, refused past MAX_SCENE_BYTES without reading further (a device, a runaway file)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read(MAX_SCENE_BYTES + 1)
+    except FileNotFoundError:
+        raise SceneError(f"{path}: no such scene file") from None
+    except IsADirectoryError:
+        raise SceneError(f"{path}: is a folder, not a scene file") from None
+    except OSError as err:
+        raise SceneError(f"{path}: cannot read: {err.strerror or err}") from None
+    if len(data) > MAX_SCENE_BYTES:
+        raise SceneError(f"{path}: larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise SceneError(f"{path}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")  # universal newlines, as text mode reads
 
 
 def load_scene(path: Path, catalogue: Catalogue | None = None) -> BaseModel:

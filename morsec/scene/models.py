@@ -7,12 +7,14 @@ generated per catalogue by `morsec.scene.schema.scene_model`, as a union discrim
 
 from __future__ import annotations
 
+from pathlib import PurePosixPath
 from typing import Annotated, Any, Literal, Union
 
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, PrivateAttr, model_validator
 from pydantic_core import PydanticCustomError
 
-from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
+from morsec.constants import (DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS, MAX_TIME_SCALE,
+                              MIN_TIME_SCALE)
 from morsec.errors import did_you_mean
 from morsec.modifiers.registry import MODIFIERS as MODIFIER_TABLE
 
@@ -49,7 +51,22 @@ def _check_name(name: str) -> str:
     return name
 
 
+def check_output_file(name: str) -> str:
+    """A text stream's file: a relative path that stays inside the run's output folder (`morsec run
+    --output-dir`, the current folder by default), whatever the scene says; else ValueError."""
+    path = PurePosixPath(name)
+    if not name or name.endswith("/") or path.name in ("", ".", ".."):
+        raise ValueError("a text stream's file must name a file inside the run's output folder")
+    if path.is_absolute() or ".." in path.parts:
+        raise ValueError("a text stream's file must be a relative path inside the run's output folder "
+                         "(not absolute, no '..'); choose the folder with morsec run --output-dir")
+    if any(not c.isprintable() for c in name):
+        raise ValueError("a text stream's file cannot contain control characters")
+    return name
+
+
 Name = Annotated[str, AfterValidator(_check_name)]
+OutputFile = Annotated[str, AfterValidator(check_output_file)]
 Number = Annotated[float, Field(allow_inf_nan=False)]
 Positive = Annotated[float, Field(gt=0, allow_inf_nan=False)]
 Vec3 = Annotated[list[Number], Field(min_length=3, max_length=3)]
@@ -71,7 +88,8 @@ class StreamSpec(Strict):
     middleware: Middleware = Field(description="datastream middleware")
     port: Annotated[int, Field(ge=1, le=65535)] | None = Field(
         None, description="socket: TCP port (default: allocated from 60000 in alphabetical order of names)")
-    file: str | None = Field(None, description="text: output file (default from the component name)")
+    file: OutputFile | None = Field(None, description="text: output file, relative to the run's output folder "
+                                    "(default from the component name)")
     format: Literal["text", "csv"] | None = Field(None, description="text: 'text' (key = value blocks) or 'csv'")
     topic: str | None = Field(None, description="topic name, for middlewares that have topics")
     frame_id: str | None = Field(None, description="frame id, for middlewares that carry one")
@@ -187,7 +205,9 @@ class TimeSpec(Strict):
     strategy: Literal["best_effort", "fixed_step"] = Field(
         "best_effort", description="set_time_strategy: follow the wall clock, or run as fast as possible")
     frequency: Positive = Field(DEFAULT_FREQUENCY, description="simulator_frequency: main loop, Hz")
-    scale: Positive = Field(1.0, description="set_time_scale: simulated seconds per wall-clock second")
+    scale: Annotated[float, Field(ge=MIN_TIME_SCALE, le=MAX_TIME_SCALE, allow_inf_nan=False)] = Field(
+        1.0, description=f"set_time_scale: simulated seconds per wall-clock second ({MIN_TIME_SCALE:g} to "
+        f"{MAX_TIME_SCALE:g})")
     relative: bool = Field(False, description="use_relative_time: timestamps start at 0 instead of the Unix epoch")
     physics_substeps: Annotated[int, Field(ge=1, le=1000)] = Field(
         DEFAULT_PHYSICS_SUBSTEPS, description="physics steps per main-loop frame")
