@@ -150,15 +150,7 @@ class Server:
                 return
             conn = Connection(sock)
             self.clients.append(conn)
-            self.resume(conn)
-
-    def pause(self, conn: Connection) -> None:
-        """Stop reading from a client (until resume): what it sends waits in the kernel, then in its own
-        socket buffer."""
-        self.poller.unregister(conn.sock)
-
-    def resume(self, conn: Connection) -> None:
-        self.poller.register(conn.sock, lambda s, c=conn: self._readable(c))
+            self.poller.register(sock, lambda s, c=conn: self._readable(c))
 
     def _readable(self, conn: Connection) -> None:
         data = conn.receive()

@@ -27,16 +27,21 @@ def format_response(request_id: str, status: str, result) -> bytes:
 class ServiceServer(Server):
     """Request lines wait in a per-client queue, served in order, at most MAX_REQUESTS_PER_POLL per client
     and poll: a client that pipelines thousands of requests gets them answered in turn without delaying
-    the others, and is not read from while it has more than that waiting (TCP slows it down). Answers
-    wait in the client's output buffer; past MAX_QUEUED_ANSWERS bytes the client, which is not reading
-    them, is dropped."""
+    the others, and is not read from while that many are waiting (what it sends meanwhile waits in the
+    kernel, and TCP slows it down). Answers wait in the client's output buffer; past MAX_QUEUED_ANSWERS
+    bytes the client, which is not reading them, is dropped."""
 
     def __init__(self, poller: Poller, requests: RequestManager, host: str, port: int, attempts: int):
         super().__init__(poller, host, port, attempts)
         self.requests = requests
         self.discarding: set[Connection] = set()
         self.waiting: dict[Connection, deque[bytes]] = {}  # request lines not served yet
-        self.paused: set[Connection] = set()  # not read from until their waiting lines are served
+
+    def _readable(self, conn: Connection) -> None:
+        if len(self.waiting.get(conn, ())) >= MAX_REQUESTS_PER_POLL:
+            self._serve(conn)  # what it sent before first; not reading keeps its waiting lines bounded
+        else:
+            super()._readable(conn)
 
     def received(self, conn: Connection, data: bytes) -> None:
         conn.inbuf += data
@@ -69,14 +74,8 @@ class ServiceServer(Server):
                 self._request(conn, line)
             if conn.closed:
                 return
-        if lines and conn not in self.paused:
-            self.paused.add(conn)
-            self.pause(conn)
-        elif not lines:
+        if not lines:
             del self.waiting[conn]
-            if conn in self.paused:
-                self.paused.discard(conn)
-                self.resume(conn)
 
     def _request(self, conn: Connection, raw: bytes) -> None:
         text = raw.decode("utf-8", errors="replace").strip()
@@ -133,7 +132,6 @@ class ServiceServer(Server):
         self.requests.drop_client(conn)
         self.discarding.discard(conn)
         self.waiting.pop(conn, None)
-        self.paused.discard(conn)
 
     def close(self) -> None:
         self._send_answers()

@@ -82,7 +82,8 @@ def time_scale(value) -> float:
     divided by the scale, stays a duration the wall clock can count."""
     scale = float(value)
     if not MIN_TIME_SCALE <= scale <= MAX_TIME_SCALE:  # NaN fails the comparison too
-        raise ValueError(f"time scale must be between {MIN_TIME_SCALE:g} and {MAX_TIME_SCALE:g}, got {value!r}")
+        raise ValueError(f"time scale must be a positive number from {MIN_TIME_SCALE:g} to {MAX_TIME_SCALE:g}, "
+                         f"got {value!r}")
     return scale
 
 

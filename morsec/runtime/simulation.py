@@ -390,12 +390,10 @@ class Simulation:
             self.close()
 
     def _wait(self, delay: float) -> None:
-        import time
-        end = time.perf_counter() + delay
         while delay > 0 and not self.quitting:
             self.poller.poll(min(delay, MAX_POLL_WAIT))
             self.service_server.flush()
-            delay = end - time.perf_counter()
+            delay = self.clock.delay()  # asked again: a request may have changed the time scale meanwhile
 
     def step(self) -> None:
         m, d = self.model, self.data

@@ -135,23 +135,26 @@ class RequestManager:
     def cancel(self, client: Any, request_id: str) -> None:
         for request in list(self.by_client.get(client, ())):
             if request.id == request_id:
-                self._abandon(request)
+                self._abandon([request])
                 self.exposed[request.component].obj.interrupt()
                 request.reply(request.id, PREEMPTED, None)
                 return
 
     def drop_client(self, client: Any) -> None:
         """A client went away: its pending requests can no longer be answered."""
-        for request in list(self.by_client.get(client, ())):
-            self._abandon(request)
+        self._abandon(list(self.by_client.get(client, ())))
 
-    def _abandon(self, request: Request) -> None:
-        """Finish a request nobody will complete; its component forgets it if it keeps requests itself
-        (an `abandoned(request)` method: time.sleep's queue)."""
-        self._finish(request)
-        forget = getattr(self.exposed[request.component].obj, "abandoned", None)
-        if forget is not None:
-            forget(request)
+    def _abandon(self, requests: list[Request]) -> None:
+        """Finish requests nobody will complete; a component that keeps requests itself (time.sleep's
+        queue) forgets them in its `abandoned(requests)`, once per component."""
+        by_component: dict[str, list[Request]] = {}
+        for request in requests:
+            self._finish(request)
+            by_component.setdefault(request.component, []).append(request)
+        for component, mine in by_component.items():
+            forget = getattr(self.exposed[component].obj, "abandoned", None)
+            if forget is not None:
+                forget(mine)
 
 
 def concurrent(fn):

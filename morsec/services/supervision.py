@@ -160,7 +160,7 @@ class TimeServices:
 
     @service
     def statistics(self) -> dict:
-        return self.sim.clock.statistics()
+        return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers)}
 
     @service
     def set_time_scale(self, value: float) -> bool:
@@ -188,10 +188,10 @@ class TimeServices:
             else:
                 self.abandoned_sleepers -= 1
 
-    def abandoned(self, request) -> None:
-        """A sleeping request was cancelled or its client left: once most of the heap is such requests,
-        it is rebuilt without them (memory goes with the client, at a cost linear overall)."""
-        self.abandoned_sleepers += 1
+    def abandoned(self, requests: list) -> None:
+        """Sleeping requests were cancelled or their client left: once most of the heap is such requests,
+        it is rebuilt without them (memory goes with the clients, at a cost linear overall)."""
+        self.abandoned_sleepers += len(requests)
         if self.abandoned_sleepers * 2 > len(self.sleepers):
             self.sleepers = [entry for entry in self.sleepers if self.sim.requests.is_running(entry[2])]
             heapq.heapify(self.sleepers)
