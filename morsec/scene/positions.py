@@ -50,13 +50,14 @@ _SCALARS = (str, bool, int, float, type(None))  # what a scene holds, with lists
 
 def parse_yaml(text: str, file: str) -> tuple[Any, SourceMap]:
     smap = SourceMap(file)
-    loader = _BoundedLoader(text, file)
     try:
-        node = loader.get_single_node()
+        loader = _BoundedLoader(text, file)  # its reader checks the characters at once
+        try:
+            node = loader.get_single_node()
+        finally:
+            loader.dispose()
     except yaml.YAMLError as err:
         raise _yaml_error(err, file, "YAML syntax error") from None
-    finally:
-        loader.dispose()
     if node is None:
         return {}, smap
     try:
