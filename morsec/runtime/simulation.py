@@ -500,16 +500,19 @@ class Stability:
     """MuJoCo resets the whole world (every robot back to its start) when a value of its state is NaN, Inf
     or huge. That reset is turned off; instead, after a frame that made MuJoCo warn, only the robots and
     objects whose state went bad are put back where they were before the frame, at rest, and the others
-    keep what the frame did to them. Per frame: two array copies and three counters read."""
+    keep what the frame did to them. Per frame: two array copies and three counters read (about 1 us)."""
 
-    WARNINGS = (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL, mujoco.mjtWarning.mjWARN_BADQACC)
+    BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
+    BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
+    BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
 
     def __init__(self, model, data, initial_qpos: np.ndarray):
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
         self.initial_qpos = initial_qpos
         self.qpos = data.qpos.copy()  # the state before the frame
         self.qvel = data.qvel.copy()
-        self.warnings = self._count(data)
+        self.numbers = data.warning.number  # a view of MuJoCo's warning counters: reading it costs nothing
+        self.warnings = self._count()
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
         for j in range(model.njnt):
             end = model.jnt_qposadr[j + 1] if j + 1 < model.njnt else model.nq
@@ -517,15 +520,16 @@ class Stability:
         self.dof_root = model.body_rootid[model.dof_bodyid].astype(int)
         self.reported: set[int] = set()
 
-    def _count(self, data) -> int:
-        return sum(data.warning[w].number for w in self.WARNINGS)
+    def _count(self) -> int:
+        n = self.numbers
+        return n[self.BAD_QPOS] + n[self.BAD_QVEL] + n[self.BAD_QACC]
 
     def remember(self, data) -> None:
         np.copyto(self.qpos, data.qpos)
         np.copyto(self.qvel, data.qvel)
 
     def check(self, model, data) -> None:
-        count = self._count(data)
+        count = self._count()
         if count != self.warnings:
             self.warnings = count
             self.recover(model, data)
