@@ -51,14 +51,12 @@ class ServiceServer(Server):
             lines = lines[1:]
         if lines:
             self.waiting.setdefault(conn, deque()).extend(lines)
-        if len(conn.inbuf) > MAX_REQUEST_LINE:
-            request_id = _first_token(conn.inbuf) if conn not in self.discarding else None
-            if request_id:
-                self._reply(conn, request_id, FAILED, f"request line longer than {MAX_REQUEST_LINE} bytes")
+        if len(conn.inbuf) > MAX_REQUEST_LINE:  # too long already: refused in its turn, its end skipped
+            if conn not in self.discarding:
+                self.waiting.setdefault(conn, deque()).append(conn.inbuf[:MAX_REQUEST_LINE + 1])
             self.discarding.add(conn)
             conn.inbuf = b""
-        if not conn.closed:
-            self._serve(conn)
+        self._serve(conn)
 
     def _serve(self, conn: Connection) -> None:
         lines = self.waiting.get(conn)
