@@ -14,3 +14,26 @@ DEFAULT_FREQUENCY = 60.0
 DEFAULT_PHYSICS_SUBSTEPS = 8
 
 PSEUDO_COMPONENTS = ("simulation", "time", "communication")
+
+# ---- limits: what a client or a scene file may ask for, declared once (docs/running.md, docs/errors.md)
+MAX_PORT = 65535
+MIN_TIME_SCALE = 1e-3  # simulated seconds per wall-clock second: 1000x slower than real time at most
+MAX_TIME_SCALE = 1e3  # ... and 1000x faster at most
+
+# the socket protocol (services and streams)
+MAX_JSON_DEPTH = 32  # nesting of [ and { in one request's parameters or one stream message
+MAX_REQUEST_LINE = 4 * 1024 * 1024  # bytes of one service request line (its JSON included)
+MAX_INPUT_LINE = 1024 * 1024  # bytes of one message to an actuator's stream
+MAX_QUEUED_ANSWERS = 8 * 1024 * 1024  # bytes of answers waiting for a client that does not read: then dropped
+MAX_REQUESTS_PER_POLL = 200  # request lines of one client handled per poll: the others wait their turn
+MAX_PENDING_REQUESTS = 1000  # asynchronous requests (time sleep ...) one client may have running
+
+# values a request may put into the physics (refused beyond, before they reach MuJoCo)
+MAX_POSITION = 1e6  # m, or rad for joint angles: |coordinate|
+MAX_SPEED = 1e4  # m/s or rad/s: |component of a velocity|
+MAX_FORCE = 1e8  # N or N m: |component of a force or torque|
+
+# scene files
+MAX_SCENE_BYTES = 1024 * 1024  # PyYAML reads about a megabyte in seconds
+MAX_SCENE_DEPTH = 64  # nesting of mappings and lists
+MAX_SCENE_VALUES = 200_000  # values once YAML aliases are expanded

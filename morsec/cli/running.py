@@ -8,7 +8,15 @@ from typing import Annotated
 import typer
 
 from morsec.cli.common import fail
-from morsec.constants import DEFAULT_BIND, SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.constants import (
+    DEFAULT_BIND,
+    MAX_PORT,
+    MAX_TIME_SCALE,
+    MIN_TIME_SCALE,
+    SERVICE_PORT,
+    SERVICE_PORT_ATTEMPTS,
+    STREAM_PORT_BASE,
+)
 from morsec.errors import MorsecError
 from morsec.runtime.view import ViewKind
 from morsec.scene.models import TimeStrategy
@@ -34,6 +42,8 @@ def run(
         help="web: MuJoCo Studio's web viewer on --bind (prints the URL); native: mujoco.viewer "
         "(needs a display)")] = None,
     view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
+    output_dir: Annotated[Path | None, typer.Option(
+        "--output-dir", help="folder the text streams write their files into (default: the current folder)")] = None,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -42,13 +52,20 @@ def run(
     from morsec.runtime.launch import run_simulation
     from morsec.runtime.simulation import RunOptions
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
-    for name, value in (("--duration", duration), ("--time-scale", time_scale)):
-        if value is not None and not value > 0:
-            fail(MorsecError(f"{name} must be a positive number, got {value}"))
+    if duration is not None and not duration > 0:
+        fail(MorsecError(f"--duration must be a positive number, got {duration}"))
+    if time_scale is not None and not MIN_TIME_SCALE <= time_scale <= MAX_TIME_SCALE:
+        fail(MorsecError(f"--time-scale must be between {MIN_TIME_SCALE:g} and {MAX_TIME_SCALE:g}, got {time_scale}"))
+    for name, value in (("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port)):
+        if value is not None and not 0 <= value <= MAX_PORT:
+            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
+    if seed is not None and seed < 0:
+        fail(MorsecError(f"--seed must be 0 or more, got {seed}"))
     try:
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
-                             port_base=port_base, seed=seed, view=view, view_port=view_port)
+                             port_base=port_base, seed=seed, view=view, view_port=view_port,
+                             output_dir=output_dir or Path.cwd())
         run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)

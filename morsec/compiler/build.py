@@ -8,8 +8,10 @@
 
 from __future__ import annotations
 
+import glob
 import hashlib
 import json
+import os
 import re
 import shutil
 import tempfile
@@ -201,7 +203,8 @@ def write_build(files: dict[str, str], out_dir: Path) -> None:
                          "choose another build folder with -o")
     try:
         out_dir.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+        remove_leftovers(out_dir)
+        tmp = _scratch(out_dir, "partial")
     except OSError as err:
         raise SceneError(f"{out_dir}: cannot create the build folder: {err.strerror or err}") from None
     old = None
@@ -214,7 +217,7 @@ def write_build(files: dict[str, str], out_dir: Path) -> None:
             else:
                 target.write_text(content, encoding="utf-8")
         if out_dir.exists():
-            old = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.old.", dir=out_dir.parent))
+            old = _scratch(out_dir, "old")
             out_dir.rename(old / "build")
         tmp.rename(out_dir)
     except BaseException as err:
@@ -228,6 +231,31 @@ def write_build(files: dict[str, str], out_dir: Path) -> None:
         raise
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)
+
+
+def _scratch(out_dir: Path, kind: str) -> Path:
+    """A hidden folder beside out_dir, named after this process: .NAME.KIND-PID-XXXXXXXX."""
+    return Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.{kind}-{os.getpid()}-", dir=out_dir.parent))
+
+
+def remove_leftovers(out_dir: Path) -> None:
+    """Remove the hidden folders of builds of out_dir that were killed while writing (their process is
+    gone); those of a build still running are left alone."""
+    pattern = re.compile(rf"\.{re.escape(out_dir.name)}\.(partial|old)-(\d+)-[^/]+")
+    for path in out_dir.parent.glob(f".{glob.escape(out_dir.name)}.*-*-*"):
+        match = pattern.fullmatch(path.name)
+        if match and path.is_dir() and not path.is_symlink() and not _alive(int(match.group(2))):
+            shutil.rmtree(path, ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):  # another user's process; not a pid at all: left alone
+        return True
+    return True
 
 
 def dump(data) -> str:

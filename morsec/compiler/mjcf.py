@@ -13,7 +13,7 @@ from typing import Any
 
 import jinja2
 import numpy as np
-from markupsafe import Markup
+from markupsafe import Markup, escape
 
 from morsec import __version__
 from morsec.compiler.assets import Assets, asset_dir
@@ -37,11 +37,20 @@ SERVO_GAIN_PER_KG = 200.0  # Blender's default camera sensor width: fov = 2 atan
 def template_env(cat: Catalogue) -> jinja2.Environment:
     loader = jinja2.FileSystemLoader([str(data_dir("templates")), *[str(r) for r in cat.roots]])
     env = jinja2.Environment(loader=loader, autoescape=True, undefined=jinja2.StrictUndefined,
-                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=False)
+                             trim_blocks=True, lstrip_blocks=True, keep_trailing_newline=False,
+                             finalize=_xml_text)
     env.filters["f"] = fmt
     env.filters["v"] = fmt_vec
     env.globals["mjcf"] = mjcf_names  # templates spell MJCF names through morsec.kits.mjcf_names
     return env
+
+
+def _xml_text(value: Any) -> Any:
+    """Every text a template inserts, escaped, with '--' written '-&#45;': names go into XML comments too,
+    where '--' may not appear; in attributes and text, XML parsers read it back as '--'."""
+    if isinstance(value, str) and not isinstance(value, Markup):
+        return Markup(str(escape(value)).replace("--", "-&#45;"))
+    return value
 
 
 def render(env: jinja2.Environment, template: str, **context: Any) -> Markup:

@@ -10,7 +10,7 @@ from typing import Any, Protocol
 SUCCESS, FAILED, PREEMPTED = "SUCCESS", "FAILED", "PREEMPTED"
 
 
-@dataclass
+@dataclass(eq=False)  # compared and hashed by identity: a key of the manager's tables
 class Request:
     id: str
     component: str

@@ -3,6 +3,7 @@ key and value), and the suffix table of scene formats."""
 
 from __future__ import annotations
 
+import datetime
 import re
 import tomllib
 from pathlib import Path as FilePath
@@ -10,6 +11,7 @@ from typing import Any
 
 import yaml
 
+from morsec.constants import MAX_SCENE_BYTES, MAX_SCENE_DEPTH, MAX_SCENE_VALUES
 from morsec.errors import SceneError, yaml_path
 from morsec.scene.sourcemap import Path, Position, SourceMap
 from morsec.scene.validate import describe_value
@@ -20,45 +22,86 @@ TOML_SUFFIXES = (".toml",)
 
 def read_scene_file(path: FilePath) -> tuple[Any, SourceMap]:
     path = FilePath(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise SceneError(f"{path}: no such scene file") from None
-    except IsADirectoryError:
-        raise SceneError(f"{path}: is a folder, not a scene file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SceneError(f"{path}: cannot read: {err}") from None
     suffix = path.suffix.lower()
+    if suffix not in YAML_SUFFIXES + TOML_SUFFIXES:
+        if path.is_dir():
+            raise SceneError(f"{path}: is a folder, not a scene file")
+        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
+    text = _read_text(path)
     if suffix in YAML_SUFFIXES:
         data, smap = parse_yaml(text, str(path))
-    elif suffix in TOML_SUFFIXES:
-        data, smap = parse_toml(text, str(path))
     else:
-        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
+        data, smap = parse_toml(text, str(path))
     if not isinstance(data, dict):
         raise SceneError(f"a scene must be a mapping with environment, robots, objects and zones, got "
                          f"{describe_value(data)}", str(path), 1, 1)
     return data, smap
 
 
+def _read_text(path: FilePath) -> str:
+    """The file's text, refused past MAX_SCENE_BYTES without reading further (a device, a runaway file)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read(MAX_SCENE_BYTES + 1)
+    except FileNotFoundError:
+        raise SceneError(f"{path}: no such scene file") from None
+    except IsADirectoryError:
+        raise SceneError(f"{path}: is a folder, not a scene file") from None
+    except OSError as err:
+        raise SceneError(f"{path}: cannot read: {err.strerror or err}") from None
+    if len(data) > MAX_SCENE_BYTES:
+        raise SceneError(f"{path}: larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise SceneError(f"{path}: cannot read: not UTF-8 text ({err.reason} at byte {err.start})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")  # universal newlines, as text mode reads
+
+
 # ---------------------------------------------------------------- YAML
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+_TIMESTAMP_TAG = "tag:yaml.org,2002:timestamp"
+_SCALARS = (str, bool, int, float, type(None))  # what a scene holds, with lists and mappings
 
 
 def parse_yaml(text: str, file: str) -> tuple[Any, SourceMap]:
     smap = SourceMap(file)
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        loader = _BoundedLoader(text, file)  # its reader checks the characters at once
+        try:
+            node = loader.get_single_node()
+        finally:
+            loader.dispose()
     except yaml.YAMLError as err:
         raise _yaml_error(err, file, "YAML syntax error") from None
     if node is None:
         return {}, smap
-    constructor = yaml.SafeLoader("")
     try:
-        return _yaml_node(node, (), smap, constructor), smap
-    except yaml.YAMLError as err:  # a scalar that cannot be constructed: unknown tag, bad timestamp ...
+        return _YamlReader(smap).read(node, (), 0), smap
+    except yaml.YAMLError as err:  # a scalar that cannot be constructed: unknown tag ...
         raise _yaml_error(err, file, "YAML error") from None
+
+
+class _BoundedLoader(yaml.SafeLoader):
+    """PyYAML's safe loader, refusing nodes nested deeper than MAX_SCENE_DEPTH: its composer recurses,
+    and would run out of Python's stack first."""
+
+    def __init__(self, text: str, file: str):
+        super().__init__(text)
+        self.file = file
+        self.depth = 0
+
+    def compose_node(self, parent, index):
+        self.depth += 1
+        try:
+            if self.depth > MAX_SCENE_DEPTH:
+                mark = self.peek_event().start_mark
+                raise SceneError(f"YAML error: mappings and lists nested deeper than {MAX_SCENE_DEPTH} levels",
+                                 self.file, mark.line + 1, mark.column + 1)
+            return super().compose_node(parent, index)
+        finally:
+            self.depth -= 1
 
 
 def _yaml_error(err: yaml.YAMLError, file: str, what: str) -> SceneError:
@@ -80,46 +123,105 @@ def _at(node: yaml.Node) -> Position:
     return node.start_mark.line + 1, node.start_mark.column + 1
 
 
-def _mapping_pairs(node: yaml.MappingNode, smap: SourceMap) -> tuple[list, list]:
-    """(explicit pairs, pairs merged in with `<<: *anchor`); explicit keys win, earlier merges win."""
-    explicit, merged = [], []
-    for key_node, value_node in node.value:
-        if key_node.tag != _MERGE_TAG:
-            explicit.append((key_node, value_node))
-            continue
-        sources = value_node.value if isinstance(value_node, yaml.SequenceNode) else [value_node]
-        for source in sources:
-            if not isinstance(source, yaml.MappingNode):
-                raise SceneError("YAML error: '<<' merges mappings only (<<: *anchor or <<: [*a, *b])",
-                                 smap.file, *_at(source))
-            inner_explicit, inner_merged = _mapping_pairs(source, smap)
-            merged.extend(inner_explicit + inner_merged)
-    return explicit, merged
+class _YamlReader:
+    """Composed YAML nodes -> plain data (str, bool, int, float, None, lists, dicts), recording positions.
 
+    Aliases and merge keys are followed, within bounds: at most MAX_SCENE_VALUES values once expanded
+    (an alias bomb's few lines stand for billions) and MAX_SCENE_DEPTH levels (an alias may refer to its
+    own ancestor)."""
 
-def _yaml_node(node: yaml.Node, path: Path, smap: SourceMap, constructor: yaml.SafeLoader) -> Any:
-    smap.values.setdefault(path, _at(node))
-    if isinstance(node, yaml.MappingNode):
+    def __init__(self, smap: SourceMap):
+        self.smap = smap
+        self.constructor = yaml.SafeLoader("")
+        self.values = 0
+
+    def error(self, message: str, node: yaml.Node) -> SceneError:
+        return SceneError(f"YAML error: {message}", self.smap.file, *_at(node))
+
+    def count(self, node: yaml.Node, n: int = 1) -> None:
+        self.values += n
+        if self.values > MAX_SCENE_VALUES:
+            raise self.error(f"the scene holds more than {MAX_SCENE_VALUES} values once its aliases are expanded",
+                             node)
+
+    def deeper(self, node: yaml.Node, depth: int) -> int:
+        if depth >= MAX_SCENE_DEPTH:
+            raise self.error(f"mappings and lists nested deeper than {MAX_SCENE_DEPTH} levels (through aliases)",
+                             node)
+        return depth + 1
+
+    def read(self, node: yaml.Node, path: Path, depth: int) -> Any:
+        self.count(node)
+        self.smap.values.setdefault(path, _at(node))
+        if isinstance(node, yaml.MappingNode):
+            return self.mapping(node, path, self.deeper(node, depth))
+        if isinstance(node, yaml.SequenceNode):
+            inner = self.deeper(node, depth)
+            return [self.read(item, path + (i,), inner) for i, item in enumerate(node.value)]
+        return self.scalar(node)
+
+    def mapping(self, node: yaml.MappingNode, path: Path, depth: int) -> dict:
         out: dict[Any, Any] = {}
-        explicit, merged = _mapping_pairs(node, smap)
+        explicit, merged = self.pairs(node, depth)
+        merged_keys = {id(k) for k, _ in merged}
         for key_node, value_node in explicit + merged:
-            key = constructor.construct_object(key_node, deep=True)
-            if isinstance(key, (list, dict)):
-                raise SceneError("a mapping key must be a plain word", smap.file, *_at(key_node))
+            if not isinstance(key_node, yaml.ScalarNode):
+                raise SceneError("a mapping key must be a plain word", self.smap.file, *_at(key_node))
+            key = self.scalar(key_node)
             if key in out:
-                if any(key_node is k for k, _ in merged):
+                if id(key_node) in merged_keys:
                     continue  # merged keys never override what is written
                 where = yaml_path(path + (key,))
                 raise SceneError(f"{where}: duplicate key {key!r}: each key may appear once in a mapping",
-                                 smap.file, *_at(key_node))
+                                 self.smap.file, *_at(key_node))
             child = path + (key,)
-            smap.keys[child] = _at(key_node)
-            smap.values[child] = _at(value_node)
-            out[key] = _yaml_node(value_node, child, smap, constructor)
+            self.smap.keys[child] = _at(key_node)
+            self.smap.values[child] = _at(value_node)
+            out[key] = self.read(value_node, child, depth)
         return out
-    if isinstance(node, yaml.SequenceNode):
-        return [_yaml_node(item, path + (i,), smap, constructor) for i, item in enumerate(node.value)]
-    return constructor.construct_object(node, deep=True)
+
+    def pairs(self, node: yaml.MappingNode, depth: int) -> tuple[list, list]:
+        """(explicit pairs, pairs merged in with `<<: *anchor`); explicit keys win, earlier merges win."""
+        explicit, merged = [], []
+        for key_node, value_node in node.value:
+            if key_node.tag != _MERGE_TAG:
+                explicit.append((key_node, value_node))
+                continue
+            sources = value_node.value if isinstance(value_node, yaml.SequenceNode) else [value_node]
+            for source in sources:
+                if not isinstance(source, yaml.MappingNode):
+                    raise self.error("'<<' merges mappings only (<<: *anchor or <<: [*a, *b])", source)
+                inner_explicit, inner_merged = self.pairs(source, self.deeper(source, depth))
+                self.count(source, len(inner_explicit) + len(inner_merged))
+                merged.extend(inner_explicit + inner_merged)
+        return explicit, merged
+
+    def scalar(self, node: yaml.ScalarNode) -> Any:
+        if node.tag == _TIMESTAMP_TAG:
+            return node.value  # a date stays the text written (YAML would make a datetime of it)
+        try:
+            value = self.constructor.construct_object(node, deep=True)
+        except yaml.YAMLError:
+            raise
+        except Exception as err:  # PyYAML's constructors fail in many ways: !!int abc, an empty !!float ...
+            raise self.error(f"cannot read {_shorten(node.value)!r} as {_tag(node.tag)}: {err}", node) from None
+        if not isinstance(value, _SCALARS):
+            raise self.error(f"{_tag(node.tag)} values have no place in a scene: use strings, numbers, booleans, "
+                             "lists and mappings", node)
+        if isinstance(value, str):
+            try:
+                value.encode("utf-8")
+            except UnicodeEncodeError:
+                raise self.error(f"{_shorten(value)!r} is not valid text (a lone surrogate escape)", node) from None
+        return value
+
+
+def _tag(tag: str) -> str:
+    return tag.replace("tag:yaml.org,2002:", "!!")
+
+
+def _shorten(text: str, limit: int = 40) -> str:
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 # ---------------------------------------------------------------- TOML
@@ -135,16 +237,50 @@ _TOML_HINTS = {
 
 
 def parse_toml(text: str, file: str) -> tuple[Any, SourceMap]:
+    tokens = _toml_tokens(text)
+    _check_toml_nesting(tokens, file)  # tomllib recurses into arrays and inline tables
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise _toml_error(str(err), text, file) from None
     smap = SourceMap(file)
     try:
-        _TomlLocator(text, smap).run()
+        _TomlLocator(tokens, smap).run()
     except Exception:  # positions are a courtesy: a file tomllib accepted must still load
         pass
-    return data, smap
+    return _plain_toml(data, smap), smap
+
+
+def _check_toml_nesting(tokens: list, file: str) -> None:
+    depth = 0
+    for kind, text, line, col in tokens:
+        if kind != "punct":
+            continue
+        if text in ("[", "[[", "{"):
+            depth += len(text) if text != "{" else 1
+            if depth > MAX_SCENE_DEPTH:
+                raise SceneError(f"TOML error: arrays and tables nested deeper than {MAX_SCENE_DEPTH} levels",
+                                 file, line, col)
+        elif text in ("]", "]]", "}"):
+            depth = max(0, depth - (len(text) if text != "}" else 1))
+
+
+def _plain_toml(data: dict, smap: SourceMap) -> dict:
+    """Bound the depth (dotted keys and table headers nest too) and make dates and times the text
+    written (tomllib's datetime objects have no place in a scene's plain data). Iterative."""
+    stack = [(data, ())]
+    while stack:
+        node, path = stack.pop()
+        if len(path) > MAX_SCENE_DEPTH:
+            line, col = smap.find(path) or (None, None)
+            raise SceneError(f"TOML error: keys nested deeper than {MAX_SCENE_DEPTH} levels", smap.file, line, col)
+        items = node.items() if isinstance(node, dict) else enumerate(node)
+        for key, value in list(items):
+            if isinstance(value, (dict, list)):
+                stack.append((value, path + (key,)))
+            elif isinstance(value, (datetime.date, datetime.time)):  # datetime is a date
+                node[key] = value.isoformat()
+    return data
 
 
 def _toml_error(msg: str, text: str, file: str) -> SceneError:
@@ -171,24 +307,30 @@ _TOKEN = re.compile(
 )
 
 
+def _toml_tokens(text: str) -> list[tuple[str, str, int, int]]:
+    """(kind, text, line, column) of every token but blanks and comments."""
+    tokens = []
+    line, line_start = 1, 0
+    for m in _TOKEN.finditer(text):
+        kind = m.lastgroup
+        col = m.start() - line_start + 1
+        if kind not in ("ws", "comment"):
+            tokens.append((kind, m.group(), line, col))
+        newlines = m.group().count("\n")
+        if newlines:
+            line += newlines
+            line_start = m.start() + m.group().rfind("\n") + 1
+    return tokens
+
+
 class _TomlLocator:
     """A small TOML reader that only records where keys and values are; tomllib already checked the syntax.
 
     Handles tables, arrays of tables (nested too), dotted keys, inline tables and (multi-line) arrays.
     """
 
-    def __init__(self, text: str, smap: SourceMap):
-        self.tokens: list[tuple[str, str, int, int]] = []
-        line, line_start = 1, 0
-        for m in _TOKEN.finditer(text):
-            kind = m.lastgroup
-            col = m.start() - line_start + 1
-            if kind not in ("ws", "comment"):
-                self.tokens.append((kind, m.group(), line, col))
-            newlines = m.group().count("\n")
-            if newlines:
-                line += newlines
-                line_start = m.start() + m.group().rfind("\n") + 1
+    def __init__(self, tokens: list[tuple[str, str, int, int]], smap: SourceMap):
+        self.tokens = list(tokens)  # a copy: `value` and `_close_bracket` split tokens in place
         self.i = 0
         self.smap = smap
         self.array_counts: dict[Path, int] = {}

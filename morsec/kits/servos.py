@@ -7,7 +7,9 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from morsec.constants import MAX_POSITION, MAX_SPEED
 from morsec.kits import mjcf_names
+from morsec.kits.bounds import bounded
 
 
 class JointServos:
@@ -56,10 +58,10 @@ class JointServos:
     def command(self, setpoint, velocity=None) -> None:
         """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given)."""
         d = self.sim.data
-        self.setpoint = np.asarray(setpoint, dtype=float).copy()
+        self.setpoint = bounded(setpoint, MAX_POSITION, "a joint setpoint (rad or m)").copy()
         ff = d.qfrc_bias[self.dof].copy()
         if velocity is not None:
-            ff += self.kv * np.asarray(velocity, dtype=float)
+            ff += self.kv * bounded(velocity, MAX_SPEED, "a joint speed (rad/s or m/s)")
         d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)
 
     def teleport(self, values, which=None) -> None:
@@ -67,7 +69,7 @@ class JointServos:
         indices `which` (`values` then gives theirs, in that order)."""
         d = self.sim.data
         which = np.arange(len(self.names)) if which is None else np.asarray(which, dtype=int)
-        values = np.asarray(values, dtype=float)
+        values = bounded(values, MAX_POSITION, "a joint position (rad or m)")
         d.qpos[self.qpos[which]] = values
         d.qvel[self.dof[which]] = 0.0
         mujoco.mj_kinematics(self.sim.model, d)

@@ -7,6 +7,8 @@ import logging
 import selectors
 import socket
 
+from morsec.constants import MAX_PORT
+
 log = logging.getLogger("morsec.middleware")
 
 READ_CHUNK = 65536
@@ -44,7 +46,7 @@ class Poller:
 def listen(host: str, port: int, attempts: int = 1) -> socket.socket:
     """Bind a listening socket on port, port+1, ... (attempts tries); OSError when none is free."""
     last: OSError | None = None
-    for candidate in range(port, port + attempts):
+    for candidate in range(port, min(port + attempts, MAX_PORT + 1)):
         sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
         sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:

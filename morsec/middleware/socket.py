@@ -8,7 +8,8 @@ from typing import Annotated, Any
 from pydantic import BaseModel, Field
 
 from morsec.component.services import service
-from morsec.constants import SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.constants import MAX_PORT, SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
+from morsec.errors import MorsecError
 from morsec.middleware.base import Lockstep, Middleware, StreamRequest
 from morsec.middleware.socket_services import ServiceServer
 from morsec.middleware.socket_streams import SocketStream
@@ -61,6 +62,9 @@ class Socket(Middleware):
             port = 0
         elif base is not None and not endpoint["explicit_port"]:
             port = base + (port - STREAM_PORT_BASE)
+            if port > MAX_PORT:
+                raise MorsecError(f"--port-base {base} puts the stream of {component} on port {port}, beyond "
+                                  f"{MAX_PORT}: choose a lower --port-base")
         stream = SocketStream(self.context.poller, component, direction, self.context.bind, port, hint_only=True)
         self.streams.setdefault(component, []).append(stream)
         return stream

@@ -5,14 +5,18 @@ from __future__ import annotations
 import json
 import logging
 import math
+import re
 
 import numpy as np
 
+from morsec.constants import MAX_INPUT_LINE, MAX_JSON_DEPTH, MAX_REQUEST_LINE
 from morsec.middleware.poller import Connection, Poller, Server
 
 log = logging.getLogger("morsec.middleware.socket")
 
-MAX_INPUT_LINE = 1024 * 1024
+MAX_JSON_SIZE = max(MAX_INPUT_LINE, MAX_REQUEST_LINE)  # what decode reads at most, whoever calls it
+_JSON_STRING = re.compile(r'"(?:[^"\\]|\\.)*"', re.S)
+_NOT_BRACKET = re.compile(r"[^\[\]{}]+")
 
 
 def encode(local_data) -> bytes:
@@ -23,8 +27,27 @@ def encode(local_data) -> bytes:
 def decode(text: str | bytes):
     """json.loads of standard JSON only: NaN, Infinity and numbers that overflow a float are refused
     (ValueError). One of them in a command reaches MuJoCo's state (a flying robot's velocity), and
-    MuJoCo then resets the whole world."""
+    MuJoCo then resets the whole world. So is a text longer than MAX_JSON_SIZE or nested deeper than
+    MAX_JSON_DEPTH (the decoder would recurse until Python gives up)."""
+    if isinstance(text, (bytes, bytearray)):
+        text = text.decode("utf-8")
+    if len(text) > MAX_JSON_SIZE:
+        raise ValueError(f"longer than {MAX_JSON_SIZE} bytes")
+    if nesting(text) > MAX_JSON_DEPTH:
+        raise ValueError(f"nested deeper than {MAX_JSON_DEPTH} levels")
     return json.loads(text, parse_constant=_not_json, parse_float=_finite)
+
+
+def nesting(text: str) -> int:
+    """How deep [ and { nest outside strings; an upper bound (the number of brackets) when that is
+    within MAX_JSON_DEPTH already: the usual case, at the cost of two counts."""
+    opening = text.count("[") + text.count("{")
+    if opening <= MAX_JSON_DEPTH:
+        return opening
+    brackets = _NOT_BRACKET.sub("", _JSON_STRING.sub("", text)).encode("ascii")
+    codes = np.frombuffer(brackets, dtype=np.uint8)
+    steps = np.where((codes == ord("[")) | (codes == ord("{")), 1, -1)
+    return int(np.cumsum(steps).max(initial=0))
 
 
 def _not_json(name: str):
@@ -67,9 +90,9 @@ class SocketStream(Server):
         complete, _, conn.inbuf = conn.inbuf.rpartition(b"\n")
         last = complete.rsplit(b"\n", 1)[-1]
         try:
-            message = decode(last.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError):
-            log.warning("%s: ignored a message that is not JSON: %.80r", self.component, last)
+            message = decode(last)
+        except ValueError as err:  # UnicodeDecodeError included
+            log.warning("%s: ignored a message that is not JSON (%s): %.80r", self.component, err, last)
             return
         if not isinstance(message, dict):
             log.warning("%s: ignored a message that is not a JSON object: %.80r", self.component, last)

@@ -5,13 +5,31 @@ from __future__ import annotations
 
 import csv
 import json
-from pathlib import Path
-from typing import Any, Literal
+import logging
+from pathlib import Path, PurePosixPath
+from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, Field
+from pydantic import AfterValidator, BaseModel, Field
 
+from morsec.errors import MorsecError
 from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.socket_streams import _plain
+
+log = logging.getLogger("morsec.middleware.text")
+
+
+def check_output_file(name: str) -> str:
+    """A text stream's file: a relative path that stays inside the run's output folder (`morsec run
+    --output-dir`, the current folder by default), whatever the scene says; else ValueError."""
+    path = PurePosixPath(name)
+    if not name or name.endswith("/") or path.name in ("", ".", ".."):
+        raise ValueError("a text stream's file must name a file inside the run's output folder")
+    if path.is_absolute() or ".." in path.parts:
+        raise ValueError("a text stream's file must be a relative path inside the run's output folder "
+                         "(not absolute, no '..'); choose the folder with morsec run --output-dir")
+    if any(not c.isprintable() for c in name):
+        raise ValueError("a text stream's file cannot contain control characters")
+    return name
 
 
 class Text(Middleware):
@@ -19,9 +37,10 @@ class Text(Middleware):
     description = "each message of a sensor appended to a file: key = value blocks, or CSV"
 
     class Options(BaseModel):
-        file: str | None = Field(None, description="text: output file (default from the component name)")
+        file: Annotated[str, AfterValidator(check_output_file)] | None = Field(
+            None, description="text: output file, relative to the run's output folder (default from the component "
+            "name)")
         format: Literal["text", "csv"] | None = Field(None, description="text: 'text' (key = value blocks) or 'csv'")
-
 
     @classmethod
     def assign(cls, streams: list[StreamRequest]) -> list[dict[str, Any]]:
@@ -39,7 +58,15 @@ class Text(Middleware):
     def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> TextStream:
         if direction != "OUT":
             raise ValueError(f"{component}: the text middleware only writes sensor output")
-        stream = TextStream(component, Path(self.context.output_dir) / endpoint["file"], endpoint["format"])
+        try:
+            path = Path(self.context.output_dir) / check_output_file(endpoint["file"])
+        except ValueError as err:  # a manifest written by hand or by an older morsec
+            raise MorsecError(f"{component}: text stream file {endpoint['file']!r}: {err}; rebuild the scene") from None
+        try:
+            stream = TextStream(component, path, endpoint["format"])
+        except OSError as err:
+            raise MorsecError(f"{component}: cannot open the text stream's file {path}: "
+                              f"{err.strerror or err}") from None
         self.streams.append(stream)
         return stream
 
@@ -63,8 +90,22 @@ class TextStream:
         self.header: list[str] | None = None
 
     listening = True
+    failed = False  # a write failed (full disk ...): the stream has stopped
 
     def publish(self, local_data: dict) -> None:
+        """Append one message; when the file cannot be written (full disk, quota, device gone), warn once
+        and stop this stream: the simulation goes on."""
+        if self.failed:
+            return
+        try:
+            self._write(local_data)
+        except OSError as err:
+            self.failed = True
+            log.warning("%s: text stream stopped, cannot write %s: %s", self.component, self.path,
+                        err.strerror or err)
+            self.close()
+
+    def _write(self, local_data: dict) -> None:
         if self.csv is not None:
             if self.header is None:
                 self.header = list(local_data)
@@ -78,8 +119,12 @@ class TextStream:
         self.file.flush()
 
     def close(self) -> None:
-        if not self.file.closed:
-            self.file.close()
+        if self.file.closed:
+            return
+        try:
+            self.file.close()  # flushes: may fail like a write
+        except OSError:
+            pass
 
 
 def _cell(value) -> str:

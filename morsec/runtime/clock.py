@@ -6,6 +6,8 @@ from __future__ import annotations
 import math
 import time as _time
 
+from morsec.constants import MAX_TIME_SCALE, MIN_TIME_SCALE
+
 MAX_LAG = 0.25  # wall-clock seconds behind schedule before best_effort gives up catching up
 
 
@@ -14,7 +16,7 @@ class Clock:
         self.frequency = frequency
         self.dt = 1.0 / frequency
         self.strategy = strategy
-        self.scale = scale
+        self.scale = time_scale(scale)
         self.origin = 0.0 if relative else _time.time()
         self.frames = 0
         self._wall_anchor = _time.perf_counter()
@@ -55,7 +57,7 @@ class Clock:
         return max(0.0, remaining)
 
     def set_scale(self, scale: float) -> None:
-        self.scale = scale
+        self.scale = time_scale(scale)
         self.restart()
 
     def restart(self) -> None:
@@ -73,6 +75,16 @@ class Clock:
             "frames": self.frames,
             "simulated_time": self.elapsed,
         }
+
+
+def time_scale(value) -> float:
+    """A time scale within [MIN_TIME_SCALE, MAX_TIME_SCALE], else ValueError: a frame's wait, 1/frequency
+    divided by the scale, stays a duration the wall clock can count."""
+    scale = float(value)
+    if not MIN_TIME_SCALE <= scale <= MAX_TIME_SCALE:  # NaN fails the comparison too
+        raise ValueError(f"time scale must be a positive number from {MIN_TIME_SCALE:g} to {MAX_TIME_SCALE:g}, "
+                         f"got {value!r}")
+    return scale
 
 
 class Periodic:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from morsec.component.services import FAILED, PREEMPTED, SUCCESS, Request, ServiceInfo
+from morsec.constants import MAX_PENDING_REQUESTS
 
 log = logging.getLogger("morsec.services")
 
@@ -28,9 +29,14 @@ class Exposed:
 
 
 class RequestManager:
+    """Asynchronous requests in progress are kept twice, by component and by client, in insertion-ordered
+    dicts: starting, finishing, cancelling one and dropping a client's are as cheap as the requests
+    concerned, however many others are running."""
+
     def __init__(self):
         self.exposed: dict[str, Exposed] = {}
-        self.running: dict[str, list[Request]] = {}  # component -> async requests in progress
+        self.running: dict[str, dict[Request, None]] = {}  # component -> async requests in progress
+        self.by_client: dict[Any, dict[Request, None]] = {}  # client -> its async requests in progress
         self.current: Request | None = None  # the request being dispatched (for async services)
 
     def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
@@ -48,6 +54,9 @@ class RequestManager:
         exposed = self.exposed.get(name)
         return sorted(exposed.services) if exposed else []
 
+    def is_running(self, request: Request) -> bool:
+        return request in self.running.get(request.component, ())
+
     def handle(self, request: Request) -> None:
         exposed = self.exposed.get(request.component)
         info = exposed.services.get(request.service) if exposed else None
@@ -64,6 +73,10 @@ class RequestManager:
             return
         request.info = info
         if info.asynchronous:
+            if request.client is not None and len(self.by_client.get(request.client, ())) >= MAX_PENDING_REQUESTS:
+                request.reply(request.id, FAILED, "too many requests pending for this client "
+                              f"({MAX_PENDING_REQUESTS}): wait for their answers or cancel some")
+                return
             self._start_async(exposed, request, method)
             return
         try:
@@ -74,56 +87,74 @@ class RequestManager:
         request.reply(request.id, SUCCESS, result)
 
     def _start_async(self, exposed: Exposed, request: Request, method) -> None:
-        running = self.running.setdefault(request.component, [])
+        running = self.running.setdefault(request.component, {})
         concurrent = getattr(method, "_morsec_concurrent", False)
         if running and not concurrent:
-            old = running[-1]
+            old = next(reversed(running))
             if old.info and old.info.interruptible:
-                running.remove(old)
+                self._finish(old)
                 exposed.obj.interrupt()
                 old.reply(old.id, PREEMPTED, None)
             else:
                 request.reply(request.id, FAILED, f"{request.component}: service {old.service!r} is already running "
                               "and cannot be interrupted")
                 return
-        running.append(request)
+        running[request] = None
+        self.by_client.setdefault(request.client, {})[request] = None
         self.current = request
         try:
             method(*request.args)
         except Exception as err:
             if request in running:
-                running.remove(request)
+                self._finish(request)
             request.reply(request.id, FAILED, _message(err))
         finally:
             self.current = None
 
+    def _finish(self, request: Request) -> None:
+        """No longer in progress (answered, preempted, cancelled or abandoned)."""
+        self.running.get(request.component, {}).pop(request, None)
+        mine = self.by_client.get(request.client)
+        if mine is not None:
+            mine.pop(request, None)
+            if not mine:
+                del self.by_client[request.client]
+
     def complete(self, component: str, status: str, result: Any, request: Request | None = None) -> None:
-        running = self.running.get(component) or []
+        running = self.running.get(component) or {}
         if request is None:
             if self.current is not None and self.current.component == component:
                 request = self.current
             elif running:
-                request = running[-1]
+                request = next(reversed(running))
         if request is None or request not in running:
             return
-        running.remove(request)
+        self._finish(request)
         request.reply(request.id, status, result)
 
     def cancel(self, client: Any, request_id: str) -> None:
-        for component, running in self.running.items():
-            for request in list(running):
-                if request.client is client and request.id == request_id:
-                    running.remove(request)
-                    self.exposed[component].obj.interrupt()
-                    request.reply(request.id, PREEMPTED, None)
-                    return
+        for request in list(self.by_client.get(client, ())):
+            if request.id == request_id:
+                self._abandon([request])
+                self.exposed[request.component].obj.interrupt()
+                request.reply(request.id, PREEMPTED, None)
+                return
 
     def drop_client(self, client: Any) -> None:
         """A client went away: its pending requests can no longer be answered."""
-        for running in self.running.values():
-            for request in list(running):
-                if request.client is client:
-                    running.remove(request)
+        self._abandon(list(self.by_client.get(client, ())))
+
+    def _abandon(self, requests: list[Request]) -> None:
+        """Finish requests nobody will complete; a component that keeps requests itself (time.sleep's
+        queue) forgets them in its `abandoned(requests)`, once per component."""
+        by_component: dict[str, list[Request]] = {}
+        for request in requests:
+            self._finish(request)
+            by_component.setdefault(request.component, []).append(request)
+        for component, mine in by_component.items():
+            forget = getattr(self.exposed[component].obj, "abandoned", None)
+            if forget is not None:
+                forget(mine)
 
 
 def concurrent(fn):

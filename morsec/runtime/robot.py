@@ -5,7 +5,9 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from morsec.constants import MAX_FORCE, MAX_POSITION, MAX_SPEED
 from morsec.kits import mjcf_names
+from morsec.kits.bounds import bounded
 from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
 
@@ -21,6 +23,7 @@ def free_joint(model, body: int) -> tuple[int, int] | None:
 def place(model, data, body: int, pos, rot) -> None:
     """Put a body (a robot's base or a passive object) at a world pose and stop it: through its free joint,
     or by moving a static body in the model."""
+    pos = bounded(pos, MAX_POSITION, "a position (m)")
     joint = free_joint(model, body)
     if joint is not None:
         adr, dof = joint
@@ -59,6 +62,8 @@ class RobotHandle:
         physics steps (ground robots keep vertical velocity, roll and pitch from physics). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
         d = self.sim.data
+        linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
+        angular = bounded(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
             if self.servo:
                 d.ctrl[self.servo] = 0.0
@@ -157,7 +162,8 @@ class RobotHandle:
         centre of mass; the contributions of several actuators add up. Stays applied until changed."""
         if not hasattr(self, "_wrenches"):
             self._wrenches: dict[str, np.ndarray] = {}
-        self._wrenches[key] = np.concatenate([np.asarray(force, float), np.asarray(torque, float)])
+        self._wrenches[key] = np.concatenate([bounded(force, MAX_FORCE, "a force (N)"),
+                                              bounded(torque, MAX_FORCE, "a torque (N m)")])
         self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
 
 

@@ -29,6 +29,7 @@ from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_man
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 
 
 @dataclass
@@ -127,8 +128,11 @@ class Simulation:
         self.scene = manifest.scene
         env = self.scene["environment"]
         self.substeps = manifest.loop.physics_substeps
-        self.clock = Clock(manifest.loop.frequency, self.options.strategy or env["time"]["strategy"],
-                           self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
+        try:
+            self.clock = Clock(manifest.loop.frequency, self.options.strategy or env["time"]["strategy"],
+                               self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
+        except ValueError as err:  # a build folder written by hand, or by an older morsec
+            raise RuntimeFailure(f"{build_dir}: {err}") from None
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
         self.dynamics = True
@@ -154,6 +158,7 @@ class Simulation:
                            dict(z["properties"])) for z in self.scene["zones"]]
         self.initial_state = (self.data.qpos.copy(), self.data.qvel.copy(), self.data.act.copy(),
                               self.model.body_pos.copy(), self.model.body_quat.copy())
+        self.stability = Stability(self.model, self.data, self.initial_state[0])
         for comp in self.components:
             try:
                 comp.instance.start()
@@ -369,21 +374,21 @@ class Simulation:
             self.close()
 
     def _wait(self, delay: float) -> None:
-        import time
-        end = time.perf_counter() + delay
         while delay > 0 and not self.quitting:
-            self.poller.poll(delay)
+            self.poller.poll(min(delay, MAX_POLL_WAIT))
             self._flush()
-            delay = end - time.perf_counter()
+            delay = self.clock.delay()  # asked again: a request may have changed the time scale meanwhile
 
     def step(self) -> None:
         m, d = self.model, self.data
         t = self.clock.elapsed
+        self.stability.remember(d)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
         if self.dynamics:
             mujoco.mj_step(m, d, nstep=self.substeps)
+            self.stability.check(m, d)
         else:
             d.qvel[:] = 0.0
             mujoco.mj_forward(m, d)
@@ -464,6 +469,68 @@ class Simulation:
             mw.close()
         self.middlewares = {}
         self.poller.close()
+
+
+class Stability:
+    """MuJoCo resets the whole world (every robot back to its start) when a value of its state is NaN, Inf
+    or huge. That reset is turned off; instead, after a frame that made MuJoCo warn, only the robots and
+    objects whose state went bad are put back where they were before the frame, at rest, and the others
+    keep what the frame did to them. Per frame: two array copies and three counters read (about 1 us)."""
+
+    BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
+    BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
+    BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
+
+    def __init__(self, model, data, initial_qpos: np.ndarray):
+        model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
+        self.initial_qpos = initial_qpos
+        self.qpos = data.qpos.copy()  # the state before the frame
+        self.qvel = data.qvel.copy()
+        self.numbers = data.warning.number  # a view of MuJoCo's warning counters: reading it costs nothing
+        self.warnings = self._count()
+        self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
+        for j in range(model.njnt):
+            end = model.jnt_qposadr[j + 1] if j + 1 < model.njnt else model.nq
+            self.qpos_root[model.jnt_qposadr[j]:end] = model.body_rootid[model.jnt_bodyid[j]]
+        self.dof_root = model.body_rootid[model.dof_bodyid].astype(int)
+        self.reported: set[int] = set()
+
+    def _count(self) -> int:
+        n = self.numbers
+        return n[self.BAD_QPOS] + n[self.BAD_QVEL] + n[self.BAD_QACC]
+
+    def remember(self, data) -> None:
+        np.copyto(self.qpos, data.qpos)
+        np.copyto(self.qvel, data.qvel)
+
+    def check(self, model, data) -> None:
+        count = self._count()
+        if count != self.warnings:
+            self.warnings = count
+            self.recover(model, data)
+
+    def recover(self, model, data) -> None:
+        bad_roots = set(self.qpos_root[~_sane(data.qpos)].tolist())
+        bad_roots |= set(self.dof_root[~(_sane(data.qvel) & _sane(data.qacc))].tolist())
+        for root in sorted(bad_roots):
+            qpos = self.qpos_root == root
+            previous = self.qpos[qpos]
+            data.qpos[qpos] = previous if np.all(_sane(previous)) else self.initial_qpos[qpos]
+            dofs = self.dof_root == root
+            data.qvel[dofs] = 0.0
+            data.qacc_warmstart[dofs] = 0.0
+            data.xfrc_applied[model.body_rootid == root] = 0.0
+            if root not in self.reported:  # once: a command that keeps doing it would fill the log
+                self.reported.add(root)
+                log.warning("%s: its state became unstable (NaN, Inf or huge values): put back where it was "
+                            "before the frame, at rest", mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, root))
+        data.qacc_warmstart[~_sane(data.qacc_warmstart)] = 0.0
+        mujoco.mj_forward(model, data)
+
+
+def _sane(values: np.ndarray) -> np.ndarray:
+    """Which values MuJoCo accepts in its state (finite, within mjMAXVAL)."""
+    return np.abs(values) <= mujoco.mjMAXVAL
 
 
 def _services_of(obj) -> dict:

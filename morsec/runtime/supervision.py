@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import heapq
+import itertools
 import math
 
 import mujoco
 import numpy as np
 
 from morsec.component.services import async_service, service
+from morsec.constants import MAX_POSITION
+from morsec.kits.bounds import bounded
 from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 
 
@@ -94,14 +98,14 @@ class Supervision:
         body = self.sim.scene_bodies().get(object_name)
         if body is None:
             raise ValueError(f"unknown object {object_name!r}")
-        pos = np.asarray(position, dtype=float)
-        if pos.shape != (3,) or not np.all(np.isfinite(pos)):
+        pos = bounded(position, MAX_POSITION, "a position (m)")
+        if pos.shape != (3,):
             raise ValueError("position must be [x, y, z]")
         if orientation is None:
             rot = self.sim.data.xmat[body].reshape(3, 3).copy()
         else:
-            rpy = np.asarray(orientation, dtype=float)
-            if rpy.shape != (3,) or not np.all(np.isfinite(rpy)):
+            rpy = bounded(orientation, MAX_POSITION, "an orientation (rad)")
+            if rpy.shape != (3,):
                 raise ValueError("orientation must be [roll, pitch, yaw]")
             rot = quat_to_matrix(euler_to_quat(*rpy))
         self.sim.place_body(body, pos, rot)
@@ -120,11 +124,14 @@ def _entry(d, body: int, children: dict) -> list:
 
 
 class TimeServices:
-    """The `time` pseudo-component."""
+    """The `time` pseudo-component. Sleeping requests wait in a heap ordered by deadline: a frame looks at
+    the first one only, a sleep costs log(n) to schedule and to wake."""
 
     def __init__(self, sim):
         self.sim = sim
-        self.sleepers: list = []  # (deadline in simulated seconds, request)
+        self.sleepers: list = []  # heap of (deadline in simulated seconds, order, request)
+        self.order = itertools.count()  # ties wake in the order they were asked
+        self.abandoned_sleepers = 0  # entries of requests no longer running (cancelled, client gone)
 
     def interrupt(self) -> None:
         pass
@@ -139,14 +146,11 @@ class TimeServices:
 
     @service
     def statistics(self) -> dict:
-        return self.sim.clock.statistics()
+        return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers)}
 
     @service
     def set_time_scale(self, value: float) -> bool:
-        value = float(value)
-        if not math.isfinite(value) or value <= 0:
-            raise ValueError("time scale must be a positive number")
-        self.sim.clock.set_scale(value)
+        self.sim.clock.set_scale(value)  # ValueError beyond [MIN_TIME_SCALE, MAX_TIME_SCALE]
         return True
 
     @async_service
@@ -154,19 +158,30 @@ class TimeServices:
         delay = float(time)
         if not math.isfinite(delay):
             raise ValueError("sleep time must be a finite number of seconds")
-        self.sleepers.append((self.sim.clock.elapsed + max(0.0, delay), self.sim.requests.current))
+        deadline = self.sim.clock.elapsed + max(0.0, delay)
+        heapq.heappush(self.sleepers, (deadline, next(self.order), self.sim.requests.current))
         self.wake()
 
     sleep._morsec_concurrent = True
 
     def wake(self) -> None:
-        if not self.sleepers:
-            return
-        elapsed = self.sim.clock.elapsed
-        due = [s for s in self.sleepers if s[0] <= elapsed + 1e-9]
-        for item in due:
-            self.sleepers.remove(item)
-            self.sim.requests.complete("time", "SUCCESS", None, item[1])
+        sleepers = self.sleepers
+        due = self.sim.clock.elapsed + 1e-9
+        while sleepers and sleepers[0][0] <= due:
+            request = heapq.heappop(sleepers)[2]
+            if self.sim.requests.is_running(request):
+                self.sim.requests.complete("time", "SUCCESS", None, request)
+            else:
+                self.abandoned_sleepers -= 1
+
+    def abandoned(self, requests: list) -> None:
+        """Sleeping requests were cancelled or their client left: once most of the heap is such requests,
+        it is rebuilt without them (memory goes with the clients, at a cost linear overall)."""
+        self.abandoned_sleepers += len(requests)
+        if self.abandoned_sleepers * 2 > len(self.sleepers):
+            self.sleepers = [entry for entry in self.sleepers if self.sim.requests.is_running(entry[2])]
+            heapq.heapify(self.sleepers)
+            self.abandoned_sleepers = 0
 
 
 class Communication:

@@ -21,7 +21,13 @@ from pydantic import (
 )
 from pydantic_core import PydanticCustomError
 
-from morsec.constants import DEFAULT_FREQUENCY, DEFAULT_PHYSICS_SUBSTEPS, FORBIDDEN_NAME_CHARS
+from morsec.constants import (
+    DEFAULT_FREQUENCY,
+    DEFAULT_PHYSICS_SUBSTEPS,
+    FORBIDDEN_NAME_CHARS,
+    MAX_TIME_SCALE,
+    MIN_TIME_SCALE,
+)
 from morsec.errors import did_you_mean
 from morsec.middleware.registry import middlewares, service_middlewares
 from morsec.modifiers.registry import MODIFIERS as MODIFIER_TABLE
@@ -210,7 +216,9 @@ class TimeSpec(Strict):
     strategy: TimeStrategy = Field(
         "best_effort", description="set_time_strategy: follow the wall clock, or run as fast as possible")
     frequency: Positive = Field(DEFAULT_FREQUENCY, description="simulator_frequency: main loop, Hz")
-    scale: Positive = Field(1.0, description="set_time_scale: simulated seconds per wall-clock second")
+    scale: Annotated[float, Field(ge=MIN_TIME_SCALE, le=MAX_TIME_SCALE, allow_inf_nan=False)] = Field(
+        1.0, description=f"set_time_scale: simulated seconds per wall-clock second ({MIN_TIME_SCALE:g} to "
+        f"{MAX_TIME_SCALE:g})")
     relative: bool = Field(False, description="use_relative_time: timestamps start at 0 instead of the Unix epoch")
     physics_substeps: Annotated[int, Field(ge=1, le=1000)] = Field(
         DEFAULT_PHYSICS_SUBSTEPS, description="physics steps per main-loop frame")

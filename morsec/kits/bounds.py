@@ -1,0 +1,16 @@
+"""Values from a request or a command, checked before they reach MuJoCo's state."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def bounded(values, limit: float, what: str) -> np.ndarray:
+    """`values` as an array of floats, or ValueError when one is not finite or beyond ±limit: what a
+    request asks for is checked before it reaches MuJoCo's state (an absurd value there makes MuJoCo
+    warn "Nan, Inf or huge value" and give up on the step)."""
+    array = np.asarray(values, dtype=float)
+    if not np.all(np.abs(array) <= limit):  # NaN fails the comparison too
+        shown = np.array2string(array, threshold=6, precision=6)
+        raise ValueError(f"{what} must be finite and within ±{limit:g}, got {shown}")
+    return array
