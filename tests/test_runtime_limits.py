@@ -6,9 +6,7 @@ a real `morsec run` and checks, from another client, that the simulation is unha
 from __future__ import annotations
 
 import json
-import os
 import socket
-import subprocess
 import threading
 import time
 from pathlib import Path
@@ -16,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from morsec.constants import MAX_JSON_DEPTH, MAX_PENDING_REQUESTS, MAX_QUEUED_ANSWERS
-from runtime_helpers import (HOST, MORSEC, LineSocket, Morsec, build_folder, parse_response, pose_sensor, robot,
+from runtime_helpers import (HOST, MORSEC, Morsec, build_folder, parse_response, pose_sensor, robot,
                              run_many, scene, scene_file, wait_until)
 
 OTHER = [0.0, 3.0]  # where the robot `other` stands: nothing in this module may move it
@@ -83,11 +81,11 @@ def test_deep_json_on_the_service_port_gets_failed(sim):
 
 def test_deep_json_on_a_stream_is_dropped(sim):
     with sim.stream("robot.motion") as motion:
-        for line in ("[" * 2048, '{"v": ' + "[" * 3000 + "1" + "]" * 3000 + ', "w": 0.0}'):
+        for message in ("[" * 2048, '{"v": ' + "[" * 3000 + "1" + "]" * 3000 + ', "w": 0.0}'):
             before = len(sim.stderr)
-            motion.send(line + "\n")
-            wait_until(lambda: any("nested deeper than" in line for line in sim.stderr[before:]), timeout=10,
-                       message="a warning about the dropped message")
+            motion.send(message + "\n")
+            wait_until(lambda before=before: any("nested deeper than" in line for line in sim.stderr[before:]),
+                       timeout=10, message="a warning about the dropped message")
         motion.send('{"v": 0.0, "w": 0.0}\n')
     unharmed(sim)
 
