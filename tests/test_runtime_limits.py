@@ -92,12 +92,11 @@ def test_deep_json_on_the_service_port_gets_failed(sim):
 
 def test_deep_json_on_a_stream_is_dropped(sim):
     with sim.stream("robot.motion") as motion:
-        for line in ("[" * 2048, '{"v": ' + "[" * 3000 + "1" + "]" * 3000 + ', "w": 0.0}'):
+        for message in ("[" * 2048, '{"v": ' + "[" * 3000 + "1" + "]" * 3000 + ', "w": 0.0}'):
             before = len(sim.stderr)
-            motion.send(line + "\n")
+            motion.send(message + "\n")
             wait_until(lambda before=before: any("nested deeper than" in line for line in sim.stderr[before:]),
-                       timeout=10,
-                       message="a warning about the dropped message")
+                       timeout=10, message="a warning about the dropped message")
         motion.send('{"v": 0.0, "w": 0.0}\n')
     unharmed(sim)
 
