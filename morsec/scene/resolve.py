@@ -12,6 +12,7 @@ from morsec.middleware.registry import service_middlewares
 from morsec.scene.models import StreamSpec, StreamSpecBase
 from morsec.scene.naming import assign_names
 from morsec.scene.sourcemap import SourceMap
+from morsec.scene.walk import walk_children
 
 
 def add_robot_defaults(data: Any, cat: Catalogue) -> None:
@@ -113,20 +114,16 @@ def _check_robot_requirements(robot, path: tuple, cat: Catalogue, fail) -> None:
     """A component that reads robot class attributes (wheel joints, steering) needs a robot declaring them."""
     robot_cls = cat.get("robots", robot.type)
     devices = cat.devices()
-
-    def visit(components, parent_path):
-        for i, comp in enumerate(components):
-            needs = devices[comp.type].robot_requires
-            missing = [a for a in needs if not hasattr(robot_cls, a)]
-            if missing:
-                fitting = [rid for rid, rc in sorted(cat.by_kind.get("robots", {}).items())
-                           if all(hasattr(rc, a) for a in needs)]
-                fail(parent_path + ("components", i, "type"),
-                     f"{comp.type!r} needs a robot declaring {', '.join(needs)}; robot type {robot.type!r} does not"
-                     + (f" (these do: {', '.join(fitting)})" if fitting else ""))
-            visit(comp.components, parent_path + ("components", i))
-
-    visit(robot.components, path)
+    for placed in walk_children(robot, robot.components, robot.name, path):
+        comp = placed.component
+        needs = devices[comp.type].robot_requires
+        missing = [a for a in needs if not hasattr(robot_cls, a)]
+        if missing:
+            fitting = [rid for rid, rc in sorted(cat.by_kind.get("robots", {}).items())
+                       if all(hasattr(rc, a) for a in needs)]
+            fail(placed.path + ("type",),
+                 f"{comp.type!r} needs a robot declaring {', '.join(needs)}; robot type {robot.type!r} does not"
+                 + (f" (these do: {', '.join(fitting)})" if fitting else ""))
 
 
 def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict, cat: Catalogue) -> None:
