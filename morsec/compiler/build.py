@@ -44,11 +44,11 @@ from morsec.scene.walk import walk_components
 _NAME_PLACEHOLDER = "morsec__robot__name__placeholder"
 
 
-def compile_scene(scene, cat: Catalogue) -> dict[str, str]:
+def compile_scene(scene, cat: Catalogue) -> dict[str, str | bytes]:
     """Everything the build folder will hold, as {relative path: text}; nothing is written here."""
     components = component_entries(scene, cat)
     loop_frequency = loop_rate(scene, components)
-    files: dict[str, str] = {}
+    files: dict[str, str | bytes] = {}  # assets (meshes, textures) are bytes
     trees = {}
     robots = []
     assets = Assets()
@@ -108,6 +108,7 @@ def component_entries(scene, cat: Catalogue) -> list[tuple[ComponentEntry, list]
         modifiers = []
         for spec in comp.modifiers:
             mod_cls = modifier_class(spec.name, cls)
+            assert mod_cls is not None, f"{fqn}: modifier {spec.name!r} does not apply (resolve() checks it)"
             params = mod_cls.resolve_params(dict(spec.model_extra or {}), env_properties)
             modifiers.append(ModifierEntry(name=spec.name, cls=f"{mod_cls.__module__}:{mod_cls.__qualname__}",
                                            params=params.model_dump(mode="json")))
@@ -192,7 +193,7 @@ def _scene_path(scene, body: str) -> tuple | None:
     return None
 
 
-def write_build(files: dict[str, str], out_dir: Path) -> None:
+def write_build(files: dict[str, str | bytes], out_dir: Path) -> None:
     """Write all files into a fresh temporary folder, then put it in place of `out_dir`; a previous build
     there is replaced only once the new one is complete, and a folder that is not a build is never touched."""
     out_dir = out_dir.resolve()

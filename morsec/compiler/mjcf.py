@@ -19,6 +19,7 @@ from morsec import __version__
 from morsec.compiler.assets import Assets, asset_dir
 from morsec.compiler.urdf import Link, expand_xacro, read_urdf
 from morsec.component.catalogue import Catalogue
+from morsec.component.contract import Component, Environment, Prop
 from morsec.errors import SceneError
 from morsec.kits import mjcf_names
 from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec
@@ -58,7 +59,8 @@ def render(env: jinja2.Environment, template: str, **context: Any) -> Markup:
     try:
         return Markup(env.get_template(template).render(**context).strip("\n"))
     except jinja2.TemplateNotFound as err:
-        raise SceneError(f"template not found: {err.name} (searched {', '.join(env.loader.searchpath)})") from None
+        searched = ", ".join(getattr(env.loader, "searchpath", ()))
+        raise SceneError(f"template not found: {err.name} (searched {searched})") from None
     except jinja2.TemplateError as err:
         where = f"{getattr(err, 'filename', None) or template}:{getattr(err, 'lineno', '') or ''}"
         raise SceneError(f"{where}: template error: {err}") from None
@@ -75,6 +77,14 @@ def component_template(cat: Catalogue, cls, filename: str) -> str | None:
         except ValueError:
             continue
     return None
+
+
+def _own_template(cat: Catalogue, cls: type[Environment] | type[Prop], filename: str) -> str:
+    """The template an environment or a prop is made of (its class's `template`), which its folder must have."""
+    template = component_template(cat, cls, filename)
+    if template is None:
+        raise SceneError(f"{cls.kind} {cls.id!r}: no {filename} in its folder {cls.folder}")
+    return template
 
 
 @dataclass
@@ -97,7 +107,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     environment = cat.get("environments", scene.environment.name)
     env_context = {"scene": scene, "environment": scene.environment, "asset_dir": asset_dir(environment),
                    "id": environment.id}
-    env_xml = render(env, component_template(cat, environment, environment.template), **env_context)
+    env_xml = render(env, _own_template(cat, environment, environment.template), **env_context)
     asset_xml = [_class_assets(environment, cat, env, assets, env_context)]
     for cls in _used_classes(scene, cat):
         asset_xml.append(_class_assets(cls, cat, env, assets, {"asset_dir": asset_dir(cls), "id": cls.id}))
@@ -155,11 +165,11 @@ def _class_assets(cls, cat: Catalogue, env, assets: Assets, context: dict) -> st
     return render(env, template, **context)
 
 
-def _used_classes(scene, cat: Catalogue) -> list:
+def _used_classes(scene, cat: Catalogue) -> list[type[Component]]:
     """Every robot, device and prop class the scene uses, once each, in a stable order."""
-    found: dict[str, object] = {}
+    found: dict[str, type[Component]] = {}
     for robot in scene.robots:
-        cls = cat.get("robots", robot.type)
+        cls: type[Component] = cat.get("robots", robot.type)
         found.setdefault(f"robot/{cls.id}", cls)
     for placed in walk_components(scene):
         cls = cat.devices()[placed.component.type]
@@ -322,7 +332,7 @@ def _mounts(scene, cat: Catalogue) -> dict[str, str]:
 
 def _move_bodies(root: ET.Element, mounts: dict[str, str]) -> None:
     parents = {child: parent for parent in root.iter() for child in parent}
-    bodies = {b.get("name"): b for b in root.iter("body")}
+    bodies = {name: b for b in root.iter("body") if (name := b.get("name")) is not None}
     for child, target in mounts.items():
         if target not in bodies:
             owner = mjcf_names.owner(target)
@@ -338,7 +348,7 @@ def _move_bodies(root: ET.Element, mounts: dict[str, str]) -> None:
 def _object(obj, cat: Catalogue, env) -> str:
     cls = cat.get("props", obj.type)
     color = list(obj.color) + [1.0] if len(obj.color) == 3 else list(obj.color)
-    fragment = render(env, component_template(cat, cls, cls.template), name=obj.name, size=obj.size,
+    fragment = render(env, _own_template(cat, cls, cls.template), name=obj.name, size=obj.size,
                       half=[s / 2 for s in obj.size], color=color, mass=obj.mass, dynamic=obj.dynamic,
                       properties=obj.properties)
     return render(env, "mjcf/object.xml.j2", obj={

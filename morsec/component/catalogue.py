@@ -20,9 +20,20 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Any, Literal, get_args, get_origin
+from typing import Any, Literal, Protocol, get_args, get_origin, overload
 
-from morsec.component.contract import KINDS, Component, ComponentProperties, DataField, Device
+from morsec.component.contract import (
+    KINDS,
+    Actuator,
+    Component,
+    ComponentProperties,
+    DataField,
+    Device,
+    Environment,
+    Prop,
+    Robot,
+    Sensor,
+)
 from morsec.errors import MorsecError, did_you_mean, one_of
 from morsec.modifiers.base import Modifier
 from morsec.modifiers.registry import MODIFIERS
@@ -57,6 +68,20 @@ class Catalogue:
         if name in self.by_kind.get(kind, {}):
             return name
         return self.aliases.get(kind, {}).get(name)
+
+    # a component of `kind` is a subclass of KINDS[kind] (load_component checks it): typed as such
+    @overload
+    def get(self, kind: Literal["robots"], name: str) -> type[Robot]: ...
+    @overload
+    def get(self, kind: Literal["sensors"], name: str) -> type[Sensor]: ...
+    @overload
+    def get(self, kind: Literal["actuators"], name: str) -> type[Actuator]: ...
+    @overload
+    def get(self, kind: Literal["environments"], name: str) -> type[Environment]: ...
+    @overload
+    def get(self, kind: Literal["props"], name: str) -> type[Prop]: ...
+    @overload
+    def get(self, kind: str, name: str) -> type[Component]: ...
 
     def get(self, kind: str, name: str) -> type[Component]:
         resolved = self.resolve(kind, name)
@@ -217,10 +242,31 @@ def load_component(folder: Path, kind: str, cid: str) -> type[Component]:
     return cls
 
 
-def load_class(ref: Any, name: str | None = None) -> type:
-    """A class a build recorded: `"module:Class"`, or a component reference (root, kind, id, name: see
-    morsec.scene.manifest.ComponentRef) whose folder is loaded if it is not yet; `name` picks another class
-    of the same component.py (a level's)."""
+class ComponentRefLike(Protocol):
+    """Where a build found a component class: morsec.scene.manifest.ComponentRef (a layer above this one)."""
+
+    @property
+    def root(self) -> str: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def id(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+
+
+@overload
+def load_class(ref: str, name: None = None) -> type[Modifier]: ...
+@overload
+def load_class(ref: ComponentRefLike, name: None = None) -> type[Component]: ...
+@overload
+def load_class(ref: ComponentRefLike, name: str) -> type[Device]: ...
+
+
+def load_class(ref: str | ComponentRefLike, name: str | None = None) -> type:
+    """A class a build recorded: a modifier's `"module:Class"`, or a component reference (root, kind, id,
+    name: see morsec.scene.manifest.ComponentRef) whose folder is loaded if it is not yet; `name` picks
+    another class of the same component.py (a level's, a sensor's or actuator's)."""
     if isinstance(ref, str):
         module_name, _, qualname = ref.partition(":")
         try:
@@ -229,6 +275,8 @@ def load_class(ref: Any, name: str | None = None) -> type:
                 target = getattr(target, part)
         except (ImportError, AttributeError) as err:
             raise MorsecError(f"cannot load {ref}: {err}") from None
+        if not (isinstance(target, type) and issubclass(target, Modifier)):
+            raise MorsecError(f"cannot load {ref}: not a morsec.modifiers.base.Modifier subclass: rebuild the scene")
         return target
     root = data_dir("components") if ref.root == BUILTIN_ROOT else Path(ref.root)
     folder = root / ref.kind / ref.id
@@ -238,7 +286,7 @@ def load_class(ref: Any, name: str | None = None) -> type:
     if getattr(getattr(module, "COMPONENT", None), "id", None) != ref.id:
         module = sys.modules[load_component(folder, ref.kind, ref.id).__module__]
     cls = getattr(module, name or ref.name, None)
-    if not isinstance(cls, type):
+    if not (isinstance(cls, type) and issubclass(cls, Device if name else Component)):
         raise MorsecError(f"{folder / 'component.py'} has no class {name or ref.name}: rebuild the scene")
     return cls
 

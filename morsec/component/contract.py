@@ -21,7 +21,7 @@ import copy
 import inspect
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Literal
 
 import mujoco
 import numpy as np
@@ -85,6 +85,8 @@ class Component:
 class Device(Component):
     """A sensor or an actuator: data fields, levels, a frequency, services."""
 
+    kind: ClassVar[Literal["sensor", "actuator"]]  # set by Sensor and Actuator
+    direction: ClassVar[Literal["IN", "OUT"]]  # of its streams by default: OUT for a sensor, IN for an actuator
     frequency: ClassVar[float] = 60.0
     data: ClassVar[tuple[DataField, ...]] = ()
     levels: ClassVar[tuple[Level, ...]] = ()
@@ -231,7 +233,7 @@ TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure,
 
 class Sensor(Device):
     kind = "sensor"
-    direction: ClassVar[str] = "OUT"
+    direction = "OUT"
 
     @classmethod
     def fields_at(cls, level: str | None) -> list[DataField]:
@@ -255,7 +257,7 @@ class Sensor(Device):
 
 class Actuator(Device):
     kind = "actuator"
-    direction: ClassVar[str] = "IN"
+    direction = "IN"
     # True: the robot gets velocity servos (forward, lateral, yaw) on its base site, driven through
     # RobotHandle.apply_speed; MuJoCo runs them inside the physics sub-steps, no Python per sub-step
     base_servo: ClassVar[bool] = False

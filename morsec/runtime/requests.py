@@ -60,7 +60,7 @@ class RequestManager:
     def handle(self, request: Request) -> None:
         exposed = self.exposed.get(request.component)
         info = exposed.services.get(request.service) if exposed else None
-        if info is None:
+        if exposed is None or info is None:
             request.reply(request.id, FAILED, f"The request {request.service!r} of component {request.component!r} "
                           "has not been registered in Socket service manager")
             return

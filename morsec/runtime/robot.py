@@ -44,6 +44,8 @@ class RobotHandle:
         self.properties = properties
         self.ground = bool(getattr(properties, "GroundRobot", False))
         self.body_id = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, name)
+        self.qpos_adr: int | None  # None: no free joint (a static robot)
+        self.qvel_adr: int | None
         self.qpos_adr, self.qvel_adr = free_joint(m, self.body_id) or (None, None)
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
@@ -52,6 +54,11 @@ class RobotHandle:
     @property
     def free(self) -> bool:
         return self.qpos_adr is not None
+
+    def _base_qvel(self) -> np.ndarray:
+        """The free joint's 6 velocities in qvel, a view: writing it sets the robot's velocity."""
+        assert self.qvel_adr is not None, f"robot {self.name} has no free joint"
+        return self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
 
     def pose(self) -> tuple[np.ndarray, np.ndarray]:
         d = self.sim.data
@@ -77,12 +84,12 @@ class RobotHandle:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
                 _, rot = self.pose()
-                v = d.qvel[self.qvel_adr:self.qvel_adr + 6]
+                v = self._base_qvel()
                 v[:3] = rot @ np.asarray(linear, float)
                 v[3:] = angular
         elif self.free:
             _, rot = self.pose()
-            v = self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
+            v = self._base_qvel()
             world = rot @ np.asarray(linear, float)
             if self.ground:
                 world[2] = v[2]
@@ -151,7 +158,7 @@ class RobotHandle:
         """(linear, angular) velocity of the base frame's origin, world frame (of a free robot: read from
         qvel, so that a velocity just written there is seen at once)."""
         if self.free:
-            v = self.sim.data.qvel[self.qvel_adr:self.qvel_adr + 6]
+            v = self._base_qvel()
             return v[:3].copy(), self.pose()[1] @ v[3:]
         res = np.zeros(6)
         mujoco.mj_objectVelocity(self.sim.model, self.sim.data, mujoco.mjtObj.mjOBJ_BODY, self.body_id, res, 0)

@@ -454,8 +454,9 @@ class Simulation:
             stream.publish(message)
 
     def close(self) -> None:
-        if getattr(self, "view", None) is not None:
-            self.view.close()
+        view = getattr(self, "view", None)  # None: closed, or __init__ stopped before opening it
+        if view is not None:
+            view.close()
             self.view = None
         for comp in getattr(self, "components", []):
             if not comp.stopped:  # once: free what start took (renderers)

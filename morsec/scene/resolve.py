@@ -3,7 +3,8 @@ written out, so that the IR records exactly what will run."""
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, NoReturn
 
 from morsec.component.catalogue import Catalogue, modifier_class
 from morsec.errors import SceneError, yaml_path
@@ -24,7 +25,7 @@ def add_robot_defaults(data: Any, cat: Catalogue) -> None:
         if not isinstance(robot, dict) or not isinstance(robot.get("type"), str):
             continue
         rid = cat.resolve("robots", robot["type"])
-        defaults = cat.by_kind["robots"][rid].default_components if rid else ()
+        defaults = cat.get("robots", rid).default_components if rid else ()
         if not defaults:
             continue
         components = robot.setdefault("components", [])
@@ -35,7 +36,7 @@ def add_robot_defaults(data: Any, cat: Catalogue) -> None:
 
 
 def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
-    def fail(path: tuple, message: str) -> None:
+    def fail(path: tuple, message: str) -> NoReturn:
         pos = smap.find(path) if smap else None
         line, col = pos if pos else (None, None)
         raise SceneError(f"{yaml_path(path)}: {message}", smap.file if smap else None, line, col)
@@ -126,7 +127,8 @@ def _check_robot_requirements(robot, path: tuple, cat: Catalogue, fail) -> None:
                  + (f" (these do: {', '.join(fitting)})" if fitting else ""))
 
 
-def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict, cat: Catalogue) -> None:
+def _check_modifier(modifier, cls, path: tuple, fail: Callable[[tuple, str], NoReturn], env_properties: dict,
+                    cat: Catalogue) -> None:
     from pydantic import ValidationError
 
     impl = modifier_class(modifier.name, cls)
@@ -143,7 +145,7 @@ def _check_modifier(modifier, cls, path: tuple, fail, env_properties: dict, cat:
         e = err.errors(include_url=False)[0]
         key = e["loc"][0] if e["loc"] else None
         where = path + ((key,) if key is not None else ())
-        fail(where, f"modifier {modifier.name!r}: {key + ': ' if key else ''}{e['msg']}")
+        fail(where, f"modifier {modifier.name!r}: {f'{key}: ' if key else ''}{e['msg']}")
 
 
 def _add_stream(comp, cls, middleware: str) -> None:

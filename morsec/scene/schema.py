@@ -7,7 +7,7 @@ import json
 from functools import lru_cache
 from typing import Annotated, Any, Literal, Union
 
-from pydantic import BaseModel, Field, create_model
+from pydantic import Field, create_model
 from typing_extensions import TypeAliasType
 
 from morsec.component.catalogue import Catalogue, camel_case
@@ -26,12 +26,17 @@ def _type_literal(cls) -> Any:
     return Literal[tuple(sorted({cls.id, cls.builder_name}))]
 
 
+def _literal(values: tuple[str, ...]) -> Any:
+    """Literal[values]: a type made at run time, which a type checker cannot see."""
+    return Literal[values]
+
+
 @lru_cache(maxsize=16)
-def scene_model(cat: Catalogue) -> type[BaseModel]:
+def scene_model(cat: Catalogue) -> type[m.SceneBase]:
     device_variants = []
     for cid, cls in sorted(cat.devices().items()):
         level_names = tuple(level.name for level in cls.levels)
-        level_type = (Literal[level_names] | None) if level_names else None
+        level_type: Any = (_literal(level_names) | None) if level_names else None
         props = _properties_model(cls)
         device_variants.append(create_model(
             f"{camel_case(cid)}Component", __base__=m.ComponentBase, __module__=GENERATED_MODULE,
@@ -43,29 +48,30 @@ def scene_model(cat: Catalogue) -> type[BaseModel]:
     # A named type alias: pydantic makes it one definition that nested `components` refer to, so each
     # variant is generated once (a plain union would expand every variant inside every other one)
     # Union[tuple]: a union of the generated variants (the `X | Y` spelling cannot take a tuple)
-    variants = Union[tuple(device_variants)]  # noqa: UP007
-    any_component = TypeAliasType("AnyComponent", Annotated[variants, Field(discriminator="type")])
+    # (variants, any_component, any_robot: types made at run time, Any to a type checker)
+    variants: Any = Union[tuple(device_variants)]  # noqa: UP007
+    any_component: Any = TypeAliasType("AnyComponent", Annotated[variants, Field(discriminator="type")])
     namespace = {"AnyComponent": any_component}
 
     robot_variants = []
-    for rid, cls in sorted(cat.by_kind.get("robots", {}).items()):
-        props = _properties_model(cls)
+    for rid, robot_cls in sorted(cat.by_kind.get("robots", {}).items()):
+        props = _properties_model(robot_cls)
         robot_variants.append(create_model(
             f"{camel_case(rid)}Robot", __base__=m.RobotBase, __module__=GENERATED_MODULE,
-            __doc__=f"robot {rid!r}: {cls.short_descr}",
-            type=(_type_literal(cls), Field(description=f"{rid} ({cls.builder_name})")),
+            __doc__=f"robot {rid!r}: {robot_cls.short_descr}",
+            type=(_type_literal(robot_cls), Field(description=f"{rid} ({robot_cls.builder_name})")),
             properties=(props, Field(default_factory=props, description="robot properties")),
         ))
-    any_robot = Annotated[Union[tuple(robot_variants)], Field(discriminator="type")]  # noqa: UP007
+    any_robot: Any = Annotated[Union[tuple(robot_variants)], Field(discriminator="type")]  # noqa: UP007
 
     env_names = tuple(cat.ids("environments"))
     environment = create_model("Environment", __base__=m.EnvironmentBase, __module__=GENERATED_MODULE,
                                __doc__=m.EnvironmentBase.__doc__,
-                               name=(Literal[env_names], Field("empty", description="environment id")))
+                               name=(_literal(env_names), Field("empty", description="environment id")))
     prop_names = tuple(cat.names("props"))
     obj = create_model("PassiveObject", __base__=m.ObjectSpec, __module__=GENERATED_MODULE,
                        __doc__=m.ObjectSpec.__doc__,
-                       type=(Literal[prop_names], Field(description="prop id")))
+                       type=(_literal(prop_names), Field(description="prop id")))
     scene = create_model(
         "Scene", __base__=m.SceneBase, __module__=GENERATED_MODULE, __doc__=m.SceneBase.__doc__,
         environment=(environment, Field(default_factory=environment)),

@@ -13,6 +13,7 @@ import re
 from typing import Any
 
 from pydantic import BaseModel, ValidationError
+from pydantic_core import ErrorDetails
 
 from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
@@ -45,8 +46,8 @@ def scene_error(err: ValidationError, data: Any, smap: SourceMap, cat: Catalogue
     for error in err.errors(include_url=False):
         path, message, at_key = _explain(error, data, cat)
         pos = smap.find(path, key=at_key)
-        problems.append((pos or (math.inf, math.inf), -len(path), path, message))
-    problems.sort(key=lambda p: p[:2])
+        problems.append((pos, -len(path), path, message))
+    problems.sort(key=lambda p: (p[0] or (math.inf, math.inf), p[1]))
     pos, _, path, message = problems[0]
     where = yaml_path(path)
     if where:
@@ -54,11 +55,11 @@ def scene_error(err: ValidationError, data: Any, smap: SourceMap, cat: Catalogue
     extra = len(problems) - 1
     if extra:
         message += f" (and {extra} more problem{'s' if extra > 1 else ''})"
-    line, col = pos if pos[0] != math.inf else (None, None)
+    line, col = pos if pos else (None, None)
     return SceneError(message, smap.file, line, col)
 
 
-def _explain(error: dict, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
+def _explain(error: ErrorDetails, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
     """(path in the file, message, whether the position is the key's rather than the value's)."""
     path, at_key = _data_path(error["loc"], data)
     kind = error["type"]
