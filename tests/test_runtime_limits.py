@@ -245,9 +245,9 @@ def bad_runs(tmp_path_factory):
     built = build_folder(scene_file(tmp, scene()), tmp / "build")
     escaping = build_folder(scene_file(tmp, scene(robot("robot", pose_sensor(streams=["text"]))), "text"),
                             tmp / "escaping")
-    middleware = json.loads((escaping / "middleware.json").read_text())
-    middleware["streams"][0]["file"] = "../outside.txt"  # a build folder edited by hand
-    (escaping / "middleware.json").write_text(json.dumps(middleware))
+    manifest = json.loads((escaping / "manifest.json").read_text())
+    manifest["streams"][0]["endpoint"]["file"] = "../outside.txt"  # a build folder edited by hand
+    (escaping / "manifest.json").write_text(json.dumps(manifest))
     cases = {
         "--time-scale 1e-300": [built, "--time-scale", "1e-300"],
         "--port-base 65535": [built, "--port-base", "65535"],

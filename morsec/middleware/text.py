@@ -11,7 +11,7 @@ from typing import Annotated, Any, Literal
 
 from pydantic import AfterValidator, BaseModel, Field
 
-from morsec.errors import MorsecError
+from morsec.errors import RuntimeFailure
 from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.socket_streams import _plain
 
@@ -61,12 +61,13 @@ class Text(Middleware):
         try:
             path = Path(self.context.output_dir) / check_output_file(endpoint["file"])
         except ValueError as err:  # a manifest written by hand or by an older morsec
-            raise MorsecError(f"{component}: text stream file {endpoint['file']!r}: {err}; rebuild the scene") from None
+            raise RuntimeFailure(f"{component}: text stream file {endpoint['file']!r}: {err}; "
+                                 "rebuild the scene") from None
         try:
             stream = TextStream(component, path, endpoint["format"])
         except OSError as err:
-            raise MorsecError(f"{component}: cannot open the text stream's file {path}: "
-                              f"{err.strerror or err}") from None
+            raise RuntimeFailure(f"{component}: cannot open the text stream's file {path}: "
+                                 f"{err.strerror or err}") from None
         self.streams.append(stream)
         return stream
 

@@ -238,7 +238,10 @@ class Simulation:
             self.close()
             raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: "
                                  f"{err.strerror or err}") from None
-        except (MorsecError, ValueError) as err:
+        except MorsecError:  # a user's option that cannot work (exit 2), a damaged build (exit 1)
+            self.close()
+            raise
+        except ValueError as err:
             self.close()
             raise RuntimeFailure(str(err)) from None
         for mw in self.middlewares.values():
