@@ -16,6 +16,7 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
+from morsec.constants import SEPARATOR
 from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
@@ -246,10 +247,15 @@ class Simulation:
         out = []
         for r in self.scene["robots"]:
             body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, r["name"])
-            out.append(SceneObject(r["name"], body, "robot", {"Robot_Tag": True, **r["properties"]}))
+            out.append(SceneObject(r["name"], body, "robot",
+                                   {"Robot_Tag": True, **r["properties"], **r.get("tags", {})}))
         for o in self.scene["objects"]:
             body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, o["name"])
             out.append(SceneObject(o["name"], body, "object", dict(o["properties"])))
+        # a component with tags (game properties its type does not declare) is something sensors look for too
+        for fqn, tags in _tagged_components(self.scene["robots"]):
+            body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, fqn)
+            out.append(SceneObject(fqn, body, "component", dict(tags)))
         return out
 
     # ---------------------------------------------------------------- queries used by components
@@ -464,6 +470,19 @@ class Simulation:
             mw.close()
         self.middlewares = {}
         self.poller.close()
+
+
+def _tagged_components(robots: list[dict]):
+    """(fully-qualified name, tags) of every component of the scene's robots that has tags."""
+    def visit(components: list[dict], parent: str):
+        for comp in components:
+            fqn = f"{parent}{SEPARATOR}{comp['name']}"
+            if comp.get("tags"):
+                yield fqn, comp["tags"]
+            yield from visit(comp.get("components", []), fqn)
+
+    for robot in robots:
+        yield from visit(robot.get("components", []), robot["name"])
 
 
 def _services_of(obj) -> dict:

@@ -67,6 +67,13 @@ Size3 = Annotated[list[Positive], Field(min_length=3, max_length=3)]
 Color = Annotated[list[Annotated[float, Field(ge=0, le=1)]], Field(min_length=3, max_length=4)]
 Basic = bool | int | float | str
 PropertyBag = dict[str, Basic]
+# Blender's game lock flags (lock_location_x ... lock_rotation_z): world axes a body cannot move along or turn about
+Lock = Literal["location_x", "location_y", "location_z", "rotation_x", "rotation_y", "rotation_z"]
+TAGS_DESCRIPTION = ("game properties the type does not declare (MORSE's properties(...) with another name), kept "
+                    "for other components to read: proximity's Track, collision's only_objects_with_property, "
+                    "the semantic camera's tag, the thermometer's FireTag")
+LOCKS_DESCRIPTION = ("Blender's game lock_location_x/y/z and lock_rotation_x/y/z: world axes the body cannot move "
+                     "along or turn about (a stiff damper on its free joint); no effect on a static body")
 TimeStrategy = Literal["best_effort", "fixed_step"]
 # the registered middlewares (morsec.middleware.registry): a package that adds one extends these
 Middleware = Literal[tuple(middlewares())]  # type: ignore[valid-type]
@@ -156,6 +163,7 @@ class ComponentBase(Strict):
     color: Color | None = Field(None, description="set_color: RGB(A) in 0..1")
     profile: bool = Field(False, description="profile: report time spent in this component")
     components: list[AnyComponent] = Field(default_factory=list, description="children (append on a component)")  # noqa: F821 (defined below)
+    tags: PropertyBag = Field(default_factory=dict, description=TAGS_DESCRIPTION)
 
 
 class RobotBase(Strict):
@@ -176,7 +184,9 @@ class RobotBase(Strict):
     physics_type: Literal["dynamic", "static", "rigid_body", "no_collision"] | None = Field(
         None, description="set_physics_type; static robots have no free joint")
     color: Color | None = Field(None, description="set_color")
+    locks: list[Lock] = Field(default_factory=list, description=LOCKS_DESCRIPTION)
     components: list[AnyComponent] = Field(default_factory=list, description="sensors and actuators")  # noqa: F821 (defined below)
+    tags: PropertyBag = Field(default_factory=dict, description=TAGS_DESCRIPTION)
 
 
 class ObjectSpec(Strict):
@@ -191,6 +201,7 @@ class ObjectSpec(Strict):
     color: Color = Field(default_factory=lambda: [0.6, 0.6, 0.6], description="RGB(A) in 0..1")
     dynamic: bool = Field(False, description="True: moves under physics (needs a mass); False: static")
     mass: Positive = Field(1.0, description="kg, used when dynamic")
+    locks: list[Lock] = Field(default_factory=list, description=LOCKS_DESCRIPTION)
     properties: PropertyBag = Field(default_factory=dict,
                                     description="game properties: Label, Description, Type, Object, Graspable, "
                                                 "Fire, ...")
