@@ -152,8 +152,9 @@ def _unknown(module: str, short: str, attr: str) -> UnknownBuilderName:
     else:
         names = builder_names()
         what = f"no builder class {attr!r} in morsec ({module})"
-    hint = did_you_mean(attr, names) or (f" ({word}s: {', '.join(names)})" if short in _KINDS else "")
-    message = f"{what}{hint}; `morsec components` lists the catalogue"
+    hint = did_you_mean(attr, names) or (f" ({word}s: {', '.join(names)})" if short in _KINDS else
+                                         " (`morsec components` lists the catalogue)")
+    message = f"{what}{hint}"
     session = current(create=False)
     if session is not None:
         return UnknownBuilderName(message, *session.position())
