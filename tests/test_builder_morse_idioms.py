@@ -330,7 +330,7 @@ def test_builder_attribute_resolves_and_names_what_is_missing():
     assert builder_attribute("morse.builder", "math").pi > 3
     assert builder_attribute("morse.builder.bpymorse", "get_object").__name__ == "get_object"
     with pytest.raises(UnknownBuilderName, match=r"no robot 'Pioneer3DXX' in morsec's catalogue "
-                                                 r"\(morse.builder.robots\); did you mean 'Pioneer3DX'\?"):
+                                                 r"\(from morse.builder.robots\); did you mean 'Pioneer3DX'\?"):
         builder_attribute(robots, "Pioneer3DXX")
     with pytest.raises(UnknownBuilderName, match=r"no sensor 'Posee' .*did you mean 'Pose'\?"):
         builder_attribute("morse.builder.sensors", "Posee")

@@ -148,13 +148,12 @@ def _unknown(module: str, short: str, attr: str) -> UnknownBuilderName:
     if short in _KINDS:
         kind, word = _KINDS[short]
         names = sorted({cls.builder_name or cid for cid, cls in cat.by_kind.get(kind, {}).items()})
-        what = f"no {word} {attr!r} in morsec's catalogue ({module})"
+        what, known = f"no {word} {attr!r} in morsec's catalogue", f"{word}s: {', '.join(names)}"
     else:
         names = builder_names()
-        what = f"no builder class {attr!r} in morsec ({module})"
-    hint = did_you_mean(attr, names) or (f" ({word}s: {', '.join(names)})" if short in _KINDS else
-                                         " (`morsec components` lists the catalogue)")
-    message = f"{what}{hint}"
+        what, known = f"no builder class {attr!r} in morsec", "`morsec components` lists the catalogue"
+    hint = did_you_mean(attr, names)
+    message = f"{what} (from {module}){hint}" if hint else f"{what} (from {module}; {known})"
     session = current(create=False)
     if session is not None:
         return UnknownBuilderName(message, *session.position())
