@@ -431,13 +431,13 @@ ERRORS = {
         motion.add_stream('ros')
         robot.append(motion)
         """, ("sim.py:4:1: robots[0].components[0].streams[0]", "'ros'", "'socket'")),
-    "unknown_property": ("""
+    "bad_property_value": ("""
         from morse.builder import *
         robot = ATRV()
         motion = MotionVW()
-        motion.properties(ControlTyp='Position')
+        motion.properties(ControlType='Sideways')
         robot.append(motion)
-        """, ("sim.py:4:1: robots[0].components[0].properties.ControlTyp", "'ControlTyp'")),
+        """, ("sim.py:4:1: robots[0].components[0].properties.ControlType", "'Sideways'")),
     "unknown_environment": ("""
         from morse.builder import *
         robot = ATRV()

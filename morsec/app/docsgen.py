@@ -99,6 +99,14 @@ Names may not contain `.`, `/`, `\\`, spaces or control characters: a component'
 `robot.component.child`. Explicit duplicate names are errors; unnamed entries are named after their type
 with MORSE's `_001`, `_002` ... suffixes (see [getting started](getting-started.md#names)).
 
+**Tags.** MORSE let a script give any object any game property (`robot.properties(obstacle=1)`), and some
+components look for them: proximity's `Track`, collision's `only_objects_with_property`, the semantic
+camera's `tag`, the thermometer's `FireTag`. A robot's or a component's `properties` are checked against
+its type (a typo is an error); a game property its type does not declare goes under `tags`
+(`tags: {obstacle: 1}`), where those components find it. Objects and zones write them in `properties`,
+which is free for them. A builder script's `properties(...)` puts an undeclared name under `tags` by
+itself, with a warning (`morsec check --strict` makes it an error).
+
 Editors can complete and check scenes with the JSON Schema in `schemas/scene.schema.json`
 (`morsec schema` prints it). Below, each section lists the keys of one mapping, in the order of the models,
 with their type, default and meaning; *required* keys have no default.
@@ -139,7 +147,7 @@ def _field_row(model: str, key: str, info: FieldInfo, prop: dict, refs: dict, do
         type_text = "mapping: the type's properties"
         default = "the type's defaults"
         doc = "validated against the properties of this `type` (see [the component list](components.md)); " \
-              "unknown properties are errors"
+              "unknown properties are errors: a game property the type does not declare goes under `tags`"
     elif model == "component" and key == "level":
         type_text = "string: one of the type's levels"
         default = "the type's default level"

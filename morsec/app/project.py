@@ -21,10 +21,10 @@ def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None)
     return Path(out_dir)
 
 
-def check_scene(source: Path) -> None:
-    """Everything `build` checks, nothing written."""
+def check_scene(source: Path, strict: bool = False) -> None:
+    """Everything `build` checks, nothing written; `strict`: a builder script's warnings are errors."""
     cat = load_catalogue(Path(source).parent)
-    compile_scene(load_scene(source, cat), cat)
+    compile_scene(load_scene(source, cat, strict), cat)
 
 
 def prepare_build(source: Path, out: Path | None = None) -> Path:

@@ -26,14 +26,19 @@ def build(
     typer.echo(f"built {scene} -> {out_dir}")
 
 
-def check(scenes: Annotated[list[Path], typer.Argument(help="scene files to validate")]) -> None:
+def check(
+    scenes: Annotated[list[Path], typer.Argument(help="scene files to validate")],
+    strict: Annotated[bool, typer.Option(
+        "--strict", help="a builder script's warnings are errors: a MORSE-only call, a property its component "
+        "does not declare (kept as a tag)")] = False,
+) -> None:
     """Validate scenes without writing anything (for CI): exit 0 when all are valid, 2 otherwise."""
     from morsec.app.project import check_scene
     failed = 0
     many = len(scenes) > 3 and err_console.is_terminal
     for path in track(scenes, description="checking", console=err_console, transient=True) if many else scenes:
         try:
-            check_scene(path)
+            check_scene(path, strict)
         except MorsecError as err:
             typer.echo(f"error: {err}", err=True)
             failed += 1

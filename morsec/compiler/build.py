@@ -117,7 +117,8 @@ def component_entries(scene, cat: Catalogue) -> list[tuple[ComponentEntry, list]
             level_class=impl.__name__, level=comp.level, frequency=comp.frequency,
             properties=comp.properties.model_dump(mode="json"),
             data_fields=[f.name for f in impl.fields_at(comp.level)],
-            services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, path=list(path),
+            services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, tags=comp.tags,
+            path=list(path),
         ), comp.streams))
     return entries
 

@@ -33,6 +33,11 @@ STAT_EXTENT = 10.0  # MuJoCo's model size statistic, fixed (it scales clip plane
 # base velocity servo gains per kg of robot: stiff enough to override wheel/ground friction when
 # turning (MORSE's motion actuators are kinematic); implicitfast integrates them stably
 SERVO_GAIN_PER_KG = 200.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
+# a lock (Blender's lock_location_z ...) is a velocity damper on the body's free joint, in the world frame:
+# under gravity alone a locked body drifts at g / LOCK_GAIN_PER_KG (0.01 mm/s); implicitfast keeps it stable
+LOCK_GAIN_PER_KG = 1.0e6
+LOCK_GEARS = {"location_x": "1 0 0 0 0 0", "location_y": "0 1 0 0 0 0", "location_z": "0 0 1 0 0 0",
+              "rotation_x": "0 0 0 1 0 0", "rotation_y": "0 0 0 0 1 0", "rotation_z": "0 0 0 0 0 1"}
 
 
 def template_env(cat: Catalogue) -> jinja2.Environment:
@@ -116,6 +121,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
               for r in scene.robots]
     objects = [_object(o, cat, env) for o in scene.objects]
     servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r, cat)]
+    locks = _locks(scene, cat, robot_trees)
     sections = _component_sections(scene, cat, env, robot_trees)
     zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
 
@@ -133,7 +139,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         extent=STAT_EXTENT,
         environment=env_xml, environment_assets=Markup("\n").join(a for a in asset_xml if a),
         meshes=[{"name": n, "file": f, "scale": sc} for n, (f, sc) in sorted(assets.meshes.items())],
-        robots=robots, objects=objects, zones=zones, servos=servos,
+        robots=robots, objects=objects, zones=zones, servos=servos, locks=locks,
         actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
         equalities=sections["equality.xml.j2"],
     ), mounts=_mounts(scene, cat))
@@ -236,6 +242,26 @@ def _needs_servo(robot, cat: Catalogue) -> bool:
     devices = cat.devices()
     return any(getattr(devices[placed.component.type], "base_servo", False)
                for placed in walk_children(robot, robot.components, robot.name, ()))
+
+
+def _locks(scene, cat: Catalogue, robot_trees: dict[str, Link]) -> list[dict]:
+    """A damper per locked axis of a moving robot or object: a velocity actuator from the body's site,
+    measured in the world frame (refsite), so that nothing moves it along (or turns it about) that axis."""
+    out = []
+    for robot in scene.robots:
+        static = robot.physics_type == "static" or getattr(cat.get("robots", robot.type), "static", False)
+        if robot.locks and not static:
+            mass = robot.mass or sum(link.mass for link in robot_trees[robot.name].walk()) or 1.0
+            out += _lock_entries(robot.name, robot.locks, mass)
+    for obj in scene.objects:
+        if obj.locks and obj.dynamic:
+            out += _lock_entries(obj.name, obj.locks, obj.mass)
+    return out
+
+
+def _lock_entries(site: str, locks: list[str], mass: float) -> list[dict]:
+    return [{"name": mjcf_names.lock(site, axis), "site": site, "gear": LOCK_GEARS[axis],
+             "kv": LOCK_GAIN_PER_KG * mass} for axis in LOCK_GEARS if axis in locks]
 
 
 def _servo(robot, cat: Catalogue, tree: Link) -> dict:
@@ -353,4 +379,4 @@ def _object(obj, cat: Catalogue, env) -> str:
                       properties=obj.properties)
     return render(env, "mjcf/object.xml.j2", obj={
         "name": obj.name, "pos": obj.translate, "quat": euler_to_quat(*obj.rotate), "dynamic": obj.dynamic,
-        "fragment": fragment})
+        "fragment": fragment, "site": bool(obj.locks and obj.dynamic)})

@@ -15,11 +15,12 @@ BUILDER_SUFFIXES = (".py",)
 SCENE_SUFFIXES = (*YAML_SUFFIXES, *TOML_SUFFIXES, *BUILDER_SUFFIXES)
 
 
-def load_scene(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
-    """The validated, resolved IR of a scene file (YAML, TOML or a MORSE builder script)."""
+def load_scene(path: Path, catalogue: Catalogue | None = None, strict: bool = False) -> BaseModel:
+    """The validated, resolved IR of a scene file (YAML, TOML or a MORSE builder script). `strict`: a
+    builder script's warnings are errors (YAML and TOML scenes have none: what they cannot say is an error)."""
     path = Path(path)
     cat = catalogue or load_catalogue(path.parent)
     if path.suffix in BUILDER_SUFFIXES:
-        return run_builder_script(path, cat)
+        return run_builder_script(path, cat, strict)
     data, smap = read_scene_file(path)
     return validate_scene(data, smap, cat)

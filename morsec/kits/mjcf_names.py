@@ -10,6 +10,7 @@ SEPARATOR = "/"
 BASE_SERVO_AXES = ("vx", "vy", "wz")  # a robot's base velocity servos: forward, lateral, yaw
 DEFAULT_CAMERA = "morsec_default"  # the environment's camera (set_camera_location / set_camera_rotation)
 ZONE_PREFIX = "zone"
+WORLD_SITE = "morsec_world"  # a site at the world origin: the frame of the locks' dampers (refsite)
 
 
 def part(owner: str, name: str) -> str:
@@ -20,6 +21,11 @@ def part(owner: str, name: str) -> str:
 def base_servo(robot: str, axis: str) -> str:
     """One of a robot's base velocity servos (axis in BASE_SERVO_AXES)."""
     return part(robot, axis)
+
+
+def lock(owner: str, axis: str) -> str:
+    """The damper that holds a robot's or object's lock on `axis` (location_z, rotation_x, ...)."""
+    return part(owner, f"lock_{axis}")
 
 
 def zone_site(zone: str) -> str:

@@ -254,10 +254,16 @@ class Simulation:
         out = []
         for r in self.scene["robots"]:
             body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, r["name"])
-            out.append(SceneObject(r["name"], body, "robot", {"Robot_Tag": True, **r["properties"]}))
+            out.append(SceneObject(r["name"], body, "robot",
+                                   {"Robot_Tag": True, **r["properties"], **r.get("tags", {})}))
         for o in self.scene["objects"]:
             body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, o["name"])
             out.append(SceneObject(o["name"], body, "object", dict(o["properties"])))
+        # a component with tags (game properties its type does not declare) is something sensors look for too
+        for entry in self.manifest.components:
+            if entry.tags:
+                body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, entry.fqn)
+                out.append(SceneObject(entry.fqn, body, "component", dict(entry.tags)))
         return out
 
     # ---------------------------------------------------------------- queries used by components

@@ -72,6 +72,7 @@ class ComponentEntry(Entry):
     services: list[str] = Field(description="middlewares its services are exposed on")
     service_names: list[str]
     modifiers: list[ModifierEntry]
+    tags: dict[str, Any] = Field(description="game properties its type does not declare, which sensors read")
     path: list[str | int] = Field(description="where it is in the scene (for messages)")
 
 

@@ -56,6 +56,7 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
 
     env_properties = scene.environment.properties
     for r, robot in enumerate(scene.robots):
+        _check_tags(robot, cat.get("robots", robot.type), ("robots", r), fail)
         _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail, env_properties)
         _check_robot_requirements(robot, ("robots", r), cat, fail)
 
@@ -79,6 +80,7 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
     devices = cat.devices()
     for i, comp in enumerate(components):
         cls = devices[comp.type]
+        _check_tags(comp, cls, parent_path + ("components", i), fail)
         if comp.level is None:
             comp.level = cls.default_level()
         if comp.frequency is None:
@@ -100,6 +102,14 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
                             cat)
         _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
                           env_properties)
+
+
+def _check_tags(entry, cls, path: tuple, fail) -> None:
+    """A tag is a game property the type does not declare: a declared one belongs under `properties`."""
+    for key in entry.tags:
+        if key in cls.Properties.model_fields:
+            fail(path + ("tags", key), f"{key!r} is a property of {cls.kind} type {cls.id!r}: set it under "
+                 "'properties' (tags are the game properties a type does not declare)")
 
 
 def _check_stream_options(stream, path: tuple, fail) -> None:

@@ -5,9 +5,10 @@ from morsec.component import ComponentProperties, DataField, Sensor, service
 
 
 class Proximity(Sensor):
-    """Which tracked objects are near the robot: every robot or object carrying the property named
-    `Track` (every robot has `Robot_Tag`), other than the sensor's own robot, whose origin is within
-    `Range` of the robot's origin, with its distance."""
+    """Which tracked objects are near the robot: every robot, object or component carrying the property
+    named `Track` (every robot has `Robot_Tag`; a robot's or component's other game properties are its
+    `tags`), other than the sensor's own robot and its components, whose origin is within `Range` of the
+    robot's origin, with its distance."""
 
     short_descr = "Names and distances of tracked objects within range"
     builder_name = "Proximity"
@@ -28,9 +29,10 @@ class Proximity(Sensor):
         p = self.properties
         xpos = self.sim.data.xpos
         origin = xpos[self.robot.body_id]
+        roots = self.sim.model.body_rootid
         near = {}
         for obj in self.sim.objects_with(p.Track):
-            if obj.body_id == self.robot.body_id:
+            if roots[obj.body_id] == self.robot.body_id:  # its own robot, or a tagged component on it
                 continue
             distance = float(np.linalg.norm(xpos[obj.body_id] - origin))
             if distance <= p.Range:

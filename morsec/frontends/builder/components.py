@@ -265,6 +265,58 @@ class AbstractComponent:
     def property_value(self, name: str):
         return self._raw.get("properties", {}).get(name)
 
+    def _split_tags(self, out: dict, prefix: tuple, smap) -> None:
+        """Robots and components: the properties their catalogue type does not declare are MORSE game
+        properties other components may read (proximity's Track, collision's only_objects_with_property):
+        kept as `tags`, with a warning at the line that set them (and the close matches)."""
+        if self._kind not in ("robot", "device") or not isinstance(out.get("properties"), dict):
+            return
+        cls = self._catalogue_class(out.get("type"))
+        if cls is None:
+            return  # an unknown type: validation reports it
+        declared = list(cls.Properties.model_fields)
+        for key in [k for k in out["properties"] if k not in declared]:
+            out.setdefault("tags", {})[key] = out["properties"].pop(key)
+            for table in (smap.values, smap.keys):
+                if prefix + ("properties", key) in table:
+                    table[prefix + ("tags", key)] = table.pop(prefix + ("properties", key))
+            line, col = self._where.get(("properties", key), (self._position[1], self._position[2]))
+            script = str(self._session.script) if self._session.script else None
+            label = self.basename or self._default_label()
+            self._session.warn(
+                f"tag:{id(self)}:{key}",
+                f"{label}.properties({key}=...): {cls.kind} type {cls.id!r} has no property {key!r}; kept as "
+                f"a tag, a game property other components can read (`tags:` in a YAML scene)"
+                f"{did_you_mean(key, declared)}", (script, line, col))
+        if not out["properties"]:
+            del out["properties"]
+
+    def _catalogue_class(self, type_name):
+        cat = self._session.catalogue
+        if not isinstance(type_name, str):
+            return None
+        if self._kind == "robot":
+            rid = cat.resolve("robots", type_name)
+            return cat.by_kind["robots"][rid] if rid else None
+        cid = cat.resolve("sensors", type_name) or cat.resolve("actuators", type_name)
+        return cat.devices()[cid] if cid else None
+
+    # ---- the Blender object behind (obj._bpy_object): see blender.py
+
+    @property
+    def _bpy_object(self):
+        from morsec.frontends.builder.blender import BlenderObject
+        return BlenderObject(self)
+
+    def _locks(self) -> list[str]:
+        return list(self._raw.get("locks", []))
+
+    def _lock(self, axis: str, locked: bool) -> None:
+        """Blender's game.lock_<axis> flag (robots and passive objects): `locks` in the scene."""
+        locks = [a for a in self._raw.get("locks", []) if a != axis] + ([axis] if locked else [])
+        from morsec.frontends.builder.blender import LOCKS
+        self._put("locks", value=[a for a in LOCKS if a in locks])
+
     # ---- children
 
     def append(self, obj, child=None, level=1):
@@ -453,6 +505,11 @@ class AbstractComponent:
         self._morse_only("append_collada", {"component": component}, "imports a Collada mesh")
         return []
 
+    def create_laser_arc(self):
+        """MORSE's laser scanners: draw the scan arc as a Blender mesh (accepted, recorded)."""
+        self._morse_only("create_laser_arc", {}, "draws the scan arc as a Blender mesh")
+        return None
+
     # ---- the catalogue
 
     def _catalogue_kinds(self) -> tuple[str, ...]:
@@ -528,6 +585,7 @@ class AbstractComponent:
         for path, pos in self._where.items():
             smap.values[prefix + path] = pos
             smap.keys[prefix + path] = pos
+        self._split_tags(out, prefix, smap)
         if self._children:
             out["components"] = [child._emit(prefix + ("components", i), smap)
                                  for i, child in enumerate(self._children)]

@@ -221,6 +221,15 @@ class Environment(AbstractComponent):
         """Deprecated MORSE name of add_service."""
         self.add_service(datastream)
 
+    def add_interface(self, datastream, **kwargs):
+        """MORSE's AbstractComponent.add_interface on the environment: add_service (the supervision
+        services on that middleware) + add_stream, which MORSE refused for an environment (it has no data
+        to stream). So: `services`; stream options are accepted, recorded and warned about."""
+        self.add_service(datastream)
+        if kwargs:
+            self._session.morse_only(None, "add_interface", {"datastream": datastream, **kwargs},
+                                     "(stream options) has no effect: the environment streams no data")
+
     def properties(self, **kwargs):
         """Global properties: longitude, latitude, altitude, angle_against_north, UTMXOffset, ..."""
         for key, value in kwargs.items():

@@ -30,11 +30,14 @@ from morsec.scene.validate import validate_scene
 _preloaded: dict[str, Recording] = {}
 
 
-def run_builder_script(path: Path, catalogue: Catalogue | None = None) -> BaseModel:
-    """The validated, resolved IR of a builder script (what load_scene gives for YAML)."""
+def run_builder_script(path: Path, catalogue: Catalogue | None = None, strict: bool = False) -> BaseModel:
+    """The validated, resolved IR of a builder script (what load_scene gives for YAML). `strict`: a warning
+    (a MORSE-only call, an unknown property kept as a tag) is an error instead (`morsec check --strict`)."""
     path = Path(path)
     cat = catalogue or load_catalogue(path.parent)
     recording = record_script(path, cat)
+    if strict and recording.records:
+        raise recording.strict_error()
     recording.report()
     return validate_scene(recording.data, recording.smap, cat)
 

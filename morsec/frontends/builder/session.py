@@ -95,19 +95,48 @@ def current_catalogue() -> Catalogue:
 
 # ---------------------------------------------------------------- the session
 
+@dataclass(frozen=True)
+class ScriptWarning:
+    """A warning about a script line: where, and what."""
+
+    file: str | None
+    line: int | None
+    column: int | None
+    message: str
+
+    def __str__(self) -> str:
+        where = f"{self.file}:{self.line}:{self.column or 1}: " if self.file and self.line else (
+            f"{self.file}: " if self.file else "")
+        return f"{where}warning: {self.message}"
+
+
 @dataclass
 class Recording:
     """What a script said: the raw scene dict, where each entry was written, and the warnings."""
 
     data: dict
     smap: SourceMap
-    warnings: list[str] = field(default_factory=list)
+    records: list[ScriptWarning] = field(default_factory=list)
+
+    @property
+    def warnings(self) -> list[str]:
+        return [str(w) for w in self.records]
 
     def report(self, stream=None) -> None:
         stream = stream or sys.stderr
         for line in self.warnings:
             stream.write(line + "\n")
         stream.flush()
+
+    def strict_error(self) -> SceneError | None:
+        """`morsec check --strict`: the first warning as an error (one line, its file:line:col), or None."""
+        if not self.records:
+            return None
+        first = self.records[0]
+        more = len(self.records) - 1
+        tail = f"; {more} more warning{'s' if more > 1 else ''}" if more else ""
+        return SceneError(f"{first.message} (--strict: warnings are errors{tail})", first.file, first.line,
+                          first.column)
 
 
 class Session:
@@ -118,7 +147,7 @@ class Session:
         self.standalone = standalone
         self.nodes: list[Any] = []  # every builder object, in creation order
         self.environment: Any = None
-        self.warnings: list[str] = []
+        self.records: list[ScriptWarning] = []
         self._warned: set[str] = set()
         self._morse_only: list[tuple[Any, str, Any]] = []  # (owner or None for env, call, value)
         self.renamed = False
@@ -156,22 +185,31 @@ class Session:
     def error(self, message: str) -> BuilderError:
         return BuilderError(message, *self.position())
 
-    def warn(self, key: str, message: str) -> None:
-        """A warning, once per `key` per script."""
+    @property
+    def warnings(self) -> list[str]:
+        return [str(w) for w in self.records]
+
+    def warn(self, key: str, message: str, position: Position | None = None) -> None:
+        """A warning, once per `key` per script, at `position` (default: the script line running now)."""
         if key in self._warned:
             return
         self._warned.add(key)
-        file, line, col = self.position()
-        where = f"{file}:{line}:{col or 1}: " if file and line else (f"{file}: " if file else "")
-        self.warnings.append(f"{where}warning: {message}")
+        file, line, col = position or self.position()
+        self.records.append(ScriptWarning(file, line, col, message))
 
-    def morse_only(self, owner: Any, call: str, value: Any, reason: str | None = None) -> None:
-        """A MORSE feature with no meaning in morsec: recorded in environment.morse_only, warned once."""
+    def morse_only(self, owner: Any, call: str, value: Any, reason: str | None = None,
+                   shown: str | None = None) -> None:
+        """A MORSE feature with no meaning in morsec: recorded in environment.morse_only, warned once
+        (per call and kind of owner, or per `shown` text when given)."""
         self._morse_only.append((owner, call, jsonable(value)))
         label = f"{call}()" if owner is None else f"{type(owner).__name__}.{call}()"
-        shown = f"env.{call}()" if owner is None else label
+        if shown is None:
+            shown = f"env.{call}()" if owner is None else label
+        else:
+            label = shown
         why = reason or "has no meaning in morsec (Blender-only)"
-        self.warn(f"morse_only:{label}", f"{shown} {why}; accepted and recorded in environment.morse_only")
+        glue = "" if why.startswith(":") else " "
+        self.warn(f"morse_only:{label}", f"{shown}{glue}{why}; accepted and recorded in environment.morse_only")
 
     # ---- objects
 
@@ -233,7 +271,9 @@ class Session:
 
     def recording(self) -> Recording:
         data, smap = self.scene_data()
-        return Recording(data, smap, list(self.warnings))
+        # in script order: some warnings (unknown properties kept as tags) are only known at the end
+        ordered = sorted(self.records, key=lambda w: (w.file != str(self.script), w.line or 0, w.column or 0))
+        return Recording(data, smap, ordered)
 
     def scene_data(self) -> tuple[dict, SourceMap]:
         self.assign_names()
