@@ -233,7 +233,10 @@ class Stream:
         came). The first call of any stream method connects: messages before it are not seen."""
         self.open()
         with self._new:
-            kept = list(self._messages)[-n:] if n > 1 else self._messages[-1:]
+            if n > 1:
+                kept = list(self._messages)[-n:]
+            else:
+                kept = [self._messages[-1]] if self._messages else []
         if n > 1:
             return [json.loads(raw) for raw in kept]
         return json.loads(kept[0]) if kept else None
