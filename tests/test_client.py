@@ -203,7 +203,6 @@ def test_connection_refused():
 # ------------------------------------------------------------------------------------------ streams
 def test_get_last_and_publish(sim):
     pose = sim.robot.pose
-    assert pose.last() is None  # the first call connects: nothing received yet
     first = pose.get(timeout=10)
     assert list(first) == ["timestamp", "x", "y", "z", "yaw", "pitch", "roll"]
     assert abs(first["x"]) < 0.05 and abs(first["y"]) < 0.05
@@ -211,8 +210,8 @@ def test_get_last_and_publish(sim):
     assert second["timestamp"] > first["timestamp"]
     wait_until(lambda: len(pose.last(3)) == 3, message="three pose messages kept")
     three = pose.last(3)
-    assert [m["timestamp"] for m in three] == sorted(m["timestamp"] for m in three)
-    assert pose.last()["timestamp"] == pose.last(3)[-1]["timestamp"] >= second["timestamp"]
+    assert len(three) == 3 and three[0]["timestamp"] < three[1]["timestamp"] < three[2]["timestamp"]
+    assert pose.last()["timestamp"] >= three[-1]["timestamp"] >= second["timestamp"]
     sim.robot.motion.publish({"v": 1.0, "w": 0.0})
     sim.sleep(1.0)
     moved = pose.get(timeout=10)
@@ -258,6 +257,15 @@ def test_activate_and_deactivate(sim):
     assert pose.get(timeout=0.5) is None
     assert sim.activate("robot.pose") is None
     assert pose.get(timeout=10) is not None
+    sim.deactivate("robot.arm")
+    try:
+        assert sim.robot.arm.last() is None  # the first call connects; a silent sensor: nothing yet
+        time.sleep(0.2)
+        assert sim.robot.arm.last() is None and sim.robot.arm.last(5) == []
+    finally:
+        sim.activate("robot.arm")
+    got = sim.robot.arm.get(timeout=10)
+    assert got is not None and sim.robot.arm.last()["timestamp"] >= got["timestamp"]
 
 
 def test_reset(sim):
@@ -340,7 +348,6 @@ def test_sleep_and_time_are_simulated(sim):
     t1, w1 = sim.time(), time.monotonic()
     assert t1 - t0 >= 0.5 - 1e-6
     assert w1 - w0 >= 0.4  # best_effort: a simulated half second takes about half a second
-    assert abs(t0 - time.time()) < 5.0
 
 
 # ------------------------------------------------------------------------------------------ closing
@@ -349,8 +356,8 @@ def test_close_is_prompt_and_leaves_no_thread(server):
     sim.robot.pose.subscribe(lambda message: None)  # starts the callback thread
     sim.robot.motion.publish({"v": 0.0, "w": 0.0})
     pending = sim.rpc_async("time", "sleep", 1000.0)
-    time.sleep(0.2)
-    assert len(sim.threads) == 2
+    wait_until(lambda: len(sim.threads) == 2, message="the I/O and callback threads running")
+    time.sleep(0.1)  # the sleep request reached the simulation
     start = time.monotonic()
     sim.close(cancel_async_services=True)
     assert time.monotonic() - start < 3.0

@@ -9,11 +9,11 @@ import re
 import threading
 import time as _time
 from collections import deque
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Mapping
 from concurrent.futures import Future
 from typing import Any
 
-from .transport import Dispatcher, Loop
+from .transport import Connection, Dispatcher, Loop
 
 logger = logging.getLogger("morsec.client")
 
@@ -174,7 +174,7 @@ class Stream:
         self.fqn = fqn
         self.port = port
         self.directions = directions
-        self._connection = None
+        self._connection: Connection | None = None
         self._open_lock = threading.Lock()
         self._messages: deque[bytes] = deque(maxlen=KEPT_MESSAGES)
         self._count = 0
@@ -189,7 +189,7 @@ class Stream:
                                                           self._on_line, self._on_close)
 
     @property
-    def connection(self):
+    def connection(self) -> Connection | None:
         return self._connection
 
     def _on_line(self, raw: bytes) -> None:  # I/O thread
@@ -257,6 +257,7 @@ class Stream:
             raise TypeError(f"{self.fqn}: publish takes a dict of the actuator's fields, got {type(message).__name__}")
         line = json.dumps(dict(message), allow_nan=False) + "\n"
         self.open()
+        assert self._connection is not None
         try:
             self._connection.send(line.encode("utf-8"))
         except ConnectionError as err:
@@ -397,7 +398,7 @@ class Robot(dict):
     def __repr__(self) -> str:
         return f"<robot {self.fqn}: {', '.join(sorted(self))}>"
 
-    __hash__ = object.__hash__
+    __hash__ = object.__hash__  # type: ignore[assignment]  # a robot is itself, not its contents
 
     def __eq__(self, other):
         return self is other
@@ -697,27 +698,10 @@ class Morse:
     def __enter__(self) -> Morse:
         return self
 
-    def __exit__(self, exc_type, exc_value, traceback) -> bool:
+    def __exit__(self, exc_type, exc_value, traceback) -> None:
         self.close(cancel_async_services=exc_type is not None)
-        return False
 
     def __repr__(self) -> str:
         state = "closed" if self._closed else "open"
         return f"<Morse {self.host}:{self.port} {state}: robots {', '.join(self._robots) or 'none'}>"
 
-
-def iter_components(morse: Morse) -> Iterator[Component]:
-    """Every component of every robot, sub-components included, each once."""
-    seen: set[int] = set()
-
-    def walk(component: Component) -> Iterator[Component]:
-        if id(component) in seen:
-            return
-        seen.add(id(component))
-        yield component
-        for child in component._children.values():
-            yield from walk(child)
-
-    for robot in morse._robots.values():
-        for component in robot.values():
-            yield from walk(component)
