@@ -19,7 +19,7 @@ LAYERS = [
     ("front ends", ("morsec.frontends",)),
     ("compiler", ("morsec.compiler",)),
     ("runtime", ("morsec.runtime",)),
-    ("application", ("morsec.app", "morsec.testing", "morsec.pymorse_compat")),
+    ("application", ("morsec.app", "morsec.testing", "morsec.pymorse_compat", "morsec.client")),
     ("command line", ("morsec.cli",)),
     ("edges", ("morsec.builder", "morsec.__main__")),
 ]
