@@ -594,3 +594,30 @@ with simulate(Path({str(tmp_path / "s.yaml")!r}).read_text(), Path({str(tmp_path
     result = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "(12, 16, 4)"
+
+
+def _horizontal_shift(before: np.ndarray, after: np.ndarray, largest: int) -> int:
+    """The shift (pixels, positive: content moved right) that best lines `after` up with `before`."""
+    a = before[..., :3].astype(float).mean(axis=2)
+    b = after[..., :3].astype(float).mean(axis=2)
+    errors = {s: float(np.mean((a[:, max(0, -s):a.shape[1] - max(0, s)] - b[:, max(0, s):b.shape[1] - max(0, -s)]) ** 2))
+              for s in range(-largest, largest + 1)}
+    return min(errors, key=errors.get)
+
+
+def test_the_camera_sees_the_room_turn_as_the_robot_turns(tmp_path):
+    """The intent of MORSE's base/video_camera_testing.py (which compares with pictures Blender rendered):
+    a camera on a robot that turns left by a small angle sees the room move right in its picture, by the
+    focal length times the tangent of the angle; turning right moves it left."""
+    width, turn = 128, 0.12
+    scene = holder_scene(f"""{{name: cam, type: video_camera, properties: {{cam_width: {width}, cam_height: 96}}}}
+                             {{name: tele, type: teleport}}""", env="indoors-1/boxes", at=(-8.0, 0.0))
+    shots = {}
+    with simulate(scene, tmp_path) as sim:
+        for yaw in (0.0, turn, -turn):
+            sim.command("r.tele", x=-8.0, y=0.0, z=HEIGHT, roll=0.0, pitch=0.0, yaw=yaw)
+            sim.step(3)
+            shots[yaw] = sim.data("r.cam")["image"].copy()
+    expected = focal_pixels(width, 96, 35.0) * math.tan(turn)
+    assert _horizontal_shift(shots[0.0], shots[turn], 40) == pytest.approx(expected, abs=3)
+    assert _horizontal_shift(shots[0.0], shots[-turn], 40) == pytest.approx(-expected, abs=3)
