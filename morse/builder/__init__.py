@@ -1,0 +1,62 @@
+"""`from morse.builder import *`: MORSE's builder API under its own name, in a builder script that
+`morsec build/run` runs as in plain Python (`python mysim.py`, a MORSE test file's `setUpEnv`).
+
+The names are those of `morsec.builder`: the fixed builder classes (`Environment`, `Robot`, `FakeRobot`,
+`PassiveObject`, ...) and one class per catalogue robot, sensor, actuator and prop (`ATRV`, `Pose`,
+`MotionVW`, ...). MORSE spread them over submodules; every `morse.builder.<module>` a script imports
+(`sensors`, `actuators`, `robots`, `creator`, `morsebuilder`, `blenderobjects`, ...) gives the same names.
+"""
+
+from __future__ import annotations
+
+import importlib.abc
+import importlib.machinery
+import sys
+import types
+
+import morsec.builder as _builder  # also: `python mysim.py` hands its scene to the command line at create()
+
+
+def _delegate(name: str):
+    """`__getattr__` and `__dir__` for a module named `name` whose attributes are morsec.builder's."""
+
+    def __getattr__(attr: str):
+        if attr == "__all__":
+            return list(_builder.__all__)
+        if attr.startswith("__"):
+            raise AttributeError(attr)
+        try:
+            return getattr(_builder, attr)
+        except AttributeError:
+            raise AttributeError(f"module {name!r} has no attribute {attr!r} (morsec's builder has no such "
+                                 "class; see docs/coming-from-morse.md)") from None
+
+    def __dir__() -> list[str]:
+        return sorted(_builder.__all__)
+
+    return __getattr__, __dir__
+
+
+__getattr__, __dir__ = _delegate(__name__)
+
+
+class _Submodules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Answers `import morse.builder.<anything>` (after the regular finders) with a view of the names."""
+
+    def find_spec(self, fullname, path=None, target=None):
+        if fullname.startswith(__name__ + "."):
+            return importlib.machinery.ModuleSpec(fullname, self, is_package=True)
+        return None
+
+    def create_module(self, spec):
+        module = types.ModuleType(spec.name, f"MORSE's {spec.name}: the names of morsec.builder")
+        module.__getattr__, module.__dir__ = _delegate(spec.name)
+        return module
+
+    def exec_module(self, module):
+        pass
+
+
+# last on sys.meta_path: a real file would win; once only, even if this module is reloaded
+if not any(type(finder).__module__ == __name__ and type(finder).__name__ == "_Submodules" for finder in sys.meta_path):
+    sys.meta_path.append(_Submodules())
