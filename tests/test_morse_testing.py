@@ -233,3 +233,58 @@ def test_a_test_file_is_also_the_builder_script_of_its_scene(pose_test, tmp_path
     done = run_python(["-m", "morsec", "build", pose_test.name, "-o", str(tmp_path / "build")], pose_test.parent)
     assert done.returncode == 0, done.stdout + done.stderr
     assert '"robot.pose"' in (tmp_path / "build" / "manifest.json").read_text()
+
+
+# ------------------------------------------------------------------ morsec.app.process, which MorseTestCase uses
+
+def two_rovers():
+    from morsec.builder import ATRV, Environment, Pose
+    robot = ATRV()
+    pose = Pose()
+    pose.add_stream("socket")
+    robot.append(pose)
+    env = Environment("empty")
+    env.add_service("socket")
+    rover = ATRV()  # noqa: F841 (the last object: named after its variable when the function returns)
+
+
+def test_record_call_names_objects_after_the_function_locals():
+    from morsec.app.process import record_call
+    recording = record_call(two_rovers)
+    assert [robot["name"] for robot in recording.data["robots"]] == ["robot", "rover"]
+
+
+def test_record_call_locates_an_error_in_the_function():
+    from morsec.app.process import record_call
+    from morsec.errors import SceneError
+
+    def broken():
+        from morsec.builder import ATRV
+        ATRV().append(NoSuchSensor())  # noqa: F821
+
+    with pytest.raises(SceneError, match="NoSuchSensor") as err:
+        record_call(broken)
+    assert (err.value.file, err.value.line) == (__file__, broken.__code__.co_firstlineno + 2)
+
+
+def test_simulation_process_starts_and_stops(tmp_path):
+    from morsec.app.process import SimulationProcess, build_call
+    build = build_call(two_rovers, tmp_path / "build")
+    sim = SimulationProcess(build, tmp_path / "sim.log", "fixed_step", ("--service-port", "0", "--port-base", "0"))
+    sim.start()
+    assert sim.running() and sim.ready.is_set()
+    assert sim.stop() == 0 and not sim.running() and gone(sim.pid)
+    assert sim.exited_by_itself is None and sim.stop() == 0  # stopped once, by us
+    log = (tmp_path / "sim.log").read_text()
+    assert "--time-strategy fixed_step" in log and "SCENE INITIALIZED" in log and "EXITING SIMULATION" in log
+
+
+def test_a_simulation_that_does_not_start_says_why(tmp_path):
+    from morsec.app.process import SimulationDidNotStart, SimulationProcess
+    build = tmp_path / "build"
+    build.mkdir()
+    (build / "manifest.json").write_text("{}")
+    sim = SimulationProcess(build, tmp_path / "sim.log")
+    with pytest.raises(SimulationDidNotStart, match=r"exited with status 1 before SCENE INITIALIZED: error: .*not a usable build folder.*; see .*sim\.log"):
+        sim.start()
+    assert not sim.running()

@@ -50,11 +50,14 @@ def record_call(fn: Callable[[], Any], catalogue: Catalogue | None = None) -> Re
     source = Path(inspect.getsourcefile(fn) or "<builder>")
     code = getattr(getattr(fn, "__func__", fn), "__code__", None)
     with recording(catalogue or load_catalogue(source.parent), source) as session:
+        previous = sys.getprofile()
+
         def at_return(frame, event, arg):
             if event == "return" and frame.f_code is code:
                 session.scan(frame)
+            if previous is not None:
+                previous(frame, event, arg)
 
-        previous = sys.getprofile()
         sys.setprofile(at_return)
         try:
             fn()
