@@ -212,6 +212,7 @@ def test_morse_builder_imports_in_plain_python(tmp_path):
         import morse.builder.morsebuilder, morsec.builder
         assert P is Pose is morsec.builder.Pose and A is ATRV and Environment is morsec.builder.Environment
         assert TimeStrategies.BestEffort != TimeStrategies.FixedSimulationStep
+        assert math.pi > 3  # MORSE's star import handed over `math`; MORSE's test files use it unimported
         from morse.testing.testing import MorseTestCase, main, testlogger, MorseMoveTestCase
         import unittest
         assert issubclass(MorseTestCase, unittest.TestCase)

@@ -5,16 +5,22 @@ The names are those of `morsec.builder`: the fixed builder classes (`Environment
 `PassiveObject`, ...) and one class per catalogue robot, sensor, actuator and prop (`ATRV`, `Pose`,
 `MotionVW`, ...). MORSE spread them over submodules; every `morse.builder.<module>` a script imports
 (`sensors`, `actuators`, `robots`, `creator`, `morsebuilder`, `blenderobjects`, ...) gives the same names.
+
+MORSE's star import also handed over the modules its builder imported (it had no `__all__`), and MORSE
+scripts and test files use `math` from it without importing it: `math` is exported too.
 """
 
 from __future__ import annotations
 
 import importlib.abc
 import importlib.machinery
+import math
 import sys
 import types
 
 import morsec.builder as _builder  # also: `python mysim.py` hands its scene to the command line at create()
+
+_MODULES = {"math": math}  # what MORSE's `from morse.builder import *` gave besides the builder's names
 
 
 def _delegate(name: str):
@@ -22,7 +28,9 @@ def _delegate(name: str):
 
     def __getattr__(attr: str):
         if attr == "__all__":
-            return list(_builder.__all__)
+            return [*_builder.__all__, *_MODULES]
+        if attr in _MODULES:
+            return _MODULES[attr]
         if attr.startswith("__"):
             raise AttributeError(attr)
         try:
@@ -32,7 +40,7 @@ def _delegate(name: str):
                                  "class; see docs/coming-from-morse.md)") from None
 
     def __dir__() -> list[str]:
-        return sorted(_builder.__all__)
+        return sorted([*_builder.__all__, *_MODULES])
 
     return __getattr__, __dir__
 
