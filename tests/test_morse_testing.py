@@ -213,6 +213,12 @@ def test_morse_builder_imports_in_plain_python(tmp_path):
         assert P is Pose is morsec.builder.Pose and A is ATRV and Environment is morsec.builder.Environment
         assert TimeStrategies.BestEffort != TimeStrategies.FixedSimulationStep
         assert math.pi > 3  # MORSE's star import handed over `math`; MORSE's test files use it unimported
+        try:
+            from morse.builder.robots import BasePR2  # not in the catalogue: an ImportError, not a module
+        except ImportError as err:
+            assert "BasePR2" in str(err)
+        else:
+            raise AssertionError(BasePR2)
         from morse.testing.testing import MorseTestCase, main, testlogger, MorseMoveTestCase
         import unittest
         assert issubclass(MorseTestCase, unittest.TestCase)

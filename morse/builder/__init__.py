@@ -49,10 +49,13 @@ __getattr__, __dir__ = _delegate(__name__)
 
 
 class _Submodules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
-    """Answers `import morse.builder.<anything>` (after the regular finders) with a view of the names."""
+    """Answers `import morse.builder.<module>` (after the regular finders) with a view of the names. MORSE's
+    modules are lowercase; a capitalized name is a class the builder does not have, so that
+    `from morse.builder.robots import BasePR2` fails with ImportError instead of giving a module."""
 
     def find_spec(self, fullname, path=None, target=None):
-        if fullname.startswith(__name__ + "."):
+        prefix, _, last = fullname.rpartition(".")
+        if (prefix == __name__ or prefix.startswith(__name__ + ".")) and last[:1].islower():
             return importlib.machinery.ModuleSpec(fullname, self, is_package=True)
         return None
 
