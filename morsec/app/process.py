@@ -101,11 +101,12 @@ def _die_with_parent() -> None:  # pragma: no cover - runs in the child, between
 
 
 class SimulationProcess:
-    """`morsec run BUILD` as a child process whose output (stdout and stderr) is appended to `log`."""
+    """`morsec run BUILD` as a child process whose output (stdout and stderr) is appended to `log`, run in the
+    log's folder."""
 
     def __init__(self, build_dir: Path, log: Path, time_strategy: str | None = None, args: tuple[str, ...] = ()):
-        self.build_dir = Path(build_dir)
-        self.log_path = Path(log)
+        self.build_dir = Path(build_dir).resolve()
+        self.log_path = Path(log).resolve()
         self.time_strategy = time_strategy
         self.args = tuple(args)
         self.process: subprocess.Popen | None = None
@@ -142,9 +143,10 @@ class SimulationProcess:
         self._log.write(f"$ {' '.join(self.command)}\n")
         self._log.flush()
         env = dict(os.environ, PYTHONUNBUFFERED="1")
+        # it runs in the log's folder: files it writes there (MuJoCo's MUJOCO_LOG.TXT) stay out of the user's
         self.process = subprocess.Popen(
-            self.command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=env,
-            text=True, encoding="utf-8", errors="replace", bufsize=1,
+            self.command, cwd=self.log_path.parent, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL, env=env, text=True, encoding="utf-8", errors="replace", bufsize=1,
             preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None)
         self._reader = threading.Thread(target=self._read, name="morsec-run-output", daemon=True)
         self._reader.start()
