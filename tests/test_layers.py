@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "morsec"
+FACADE = PACKAGE.parent / "morse"  # MORSE's names for users' files: an edge over morsec, never imported by it
 
 # the order data flows in; a module may import its own layer and the layers before it
 LAYERS = [
@@ -21,7 +22,7 @@ LAYERS = [
     ("runtime", ("morsec.runtime",)),
     ("application", ("morsec.app", "morsec.testing", "morsec.pymorse_compat", "morsec.client")),
     ("command line", ("morsec.cli",)),
-    ("edges", ("morsec.builder", "morsec.__main__")),
+    ("edges", ("morsec.builder", "morsec.__main__", "morse")),
 ]
 
 
@@ -54,10 +55,10 @@ def imported(path: Path, module: str) -> set[str]:
                 up = package.split(".")[: len(package.split(".")) - node.level + 1]
                 base = ".".join(up + ([base] if base else []))
             found.add(base)
-    return {name for name in found if name == "morsec" or name.startswith("morsec.")}
+    return {name for name in found if name.split(".")[0] in ("morsec", "morse")}
 
 
-MODULES = sorted(PACKAGE.rglob("*.py"))
+MODULES = sorted(PACKAGE.rglob("*.py")) + sorted(FACADE.rglob("*.py"))
 
 
 def test_every_module_has_a_layer():
@@ -77,6 +78,13 @@ def test_imports_run_down_the_pipeline(path):
         if there is not None and own is not None and there > own:
             backwards.append(f"{module} ({LAYERS[own][0]}) imports {target} ({LAYERS[there][0]})")
     assert not backwards, "imports that run backwards:\n" + "\n".join(backwards)
+
+
+def test_morsec_never_imports_the_morse_facade():
+    """`morse` is MORSE users' name for morsec; morsec's own code (morsec.builder included) does not use it."""
+    users = [f"{module_name(p)} imports {target}" for p in sorted(PACKAGE.rglob("*.py"))
+             for target in sorted(imported(p, module_name(p))) if target.split(".")[0] == "morse"]
+    assert not users, "morsec modules importing the morse façade:\n" + "\n".join(users)
 
 
 def test_the_layer_check_sees_a_backward_import(tmp_path):

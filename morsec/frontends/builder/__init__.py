@@ -1,7 +1,7 @@
 """MORSE's builder API, recording a morsec scene: `from morsec.frontends.builder import *`.
 
-Inside `morsec build/run/check/convert script.py`, `from morse.builder import *` gives this same
-module (an import hook active while the script runs). Besides the fixed classes below, every robot,
+`from morse.builder import *` (the `morse` package shipped beside morsec, an edge that morsec never
+imports) gives the same names, through `morsec.builder`. Besides the fixed classes below, every robot,
 sensor, actuator and prop of the catalogue is a class named by its `builder_name` (ATRV, Pose,
 MotionVW, ...): a project's own components appear here as soon as their folder exists.
 

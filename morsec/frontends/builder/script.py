@@ -22,7 +22,6 @@ from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.errors import MorsecError, SceneError, did_you_mean
 from morsec.frontends.builder import builder_names
 from morsec.frontends.builder import session as _session
-from morsec.frontends.builder.hook import morse_import_hook
 from morsec.frontends.builder.session import BuilderAttributeError, Recording, Session, is_builder_file
 from morsec.scene.validate import validate_scene
 
@@ -79,32 +78,33 @@ def record_script(path: Path, catalogue: Catalogue | None = None) -> Recording:
 
 
 @contextmanager
-def recording(catalogue: Catalogue | None = None):
+def recording(catalogue: Catalogue | None = None, script: Path | None = None):
     """Record builder calls made from Python code (a notebook, a test) instead of a script file:
 
         with recording() as session:
             robot = ATRV(); robot.append(Pose()); env = Environment('empty')
         scene = validate_scene(*session.scene_data(), session.catalogue)
+
+    `script`: the file making the calls (a test file), which errors and the source map then name.
     """
-    session = Session(catalogue or load_catalogue(), None)
+    session = Session(catalogue or load_catalogue(), script)
     _session.push(session)
     try:
-        with morse_import_hook():
-            yield session
+        yield session
     finally:
         _session.pop(session)
 
 
 @contextmanager
 def _running(session: Session, path: Path):
-    """The session is current, `morse.builder` imports resolve to morsec, the script's folder is on sys.path."""
+    """The session is current (builder objects, from `morse.builder` or `morsec.builder`, record into it) and
+    the script's folder is on sys.path."""
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [str(path)]
     sys.path.insert(0, str(path.resolve().parent))
     _session.push(session)
     try:
-        with morse_import_hook():
-            yield
+        yield
     finally:
         _session.pop(session)
         sys.argv = saved_argv
@@ -134,8 +134,8 @@ def script_error(err: BaseException, path: Path) -> SceneError:
     if isinstance(err, BuilderAttributeError):
         message = str(err)
     elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] == "morse":
-        message = (f"{type(err).__name__}: {err}: morsec provides morse.builder only (MORSE's core, middleware "
-                   "and testing modules have no morsec equivalent)")
+        message = (f"{type(err).__name__}: {err}: morsec provides morse.builder and morse.testing only "
+                   "(MORSE's core and middleware modules have no morsec equivalent)")
     elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] in ("bpy", "bge", "mathutils"):
         message = f"{type(err).__name__}: {err}: morsec runs without Blender; its Python modules do not exist"
     else:

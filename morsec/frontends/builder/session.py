@@ -79,6 +79,12 @@ def finish_standalone(session: Session) -> None:
     _standalone_handler(session)
 
 
+def recording_now() -> bool:
+    """Whether morsec is recording builder calls now (a script under `morsec build/run`, `recording()`),
+    as opposed to builder calls made by a plain-Python script on its own."""
+    return bool(_stack)
+
+
 def push(session: Session) -> None:
     _stack.append(session)
 
