@@ -306,7 +306,7 @@ def test_morse_builder_submodules_resolve_to_the_builder_names(tmp_path):
     # the same package outside morsec, in plain Python (the `morse` package ships beside `morsec`)
     import morse.builder.sensors
     assert morse.builder.sensors.Pose is morse.builder.Pose
-    with pytest.raises(AttributeError, match="no attribute 'NoSuchSensor'"):
+    with pytest.raises(ImportError, match="no sensor 'NoSuchSensor' in morsec's catalogue"):
         morse.builder.sensors.NoSuchSensor  # noqa: B018
 
 

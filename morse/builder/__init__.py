@@ -47,8 +47,10 @@ class _Submodules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     BasePR2` then fails with the builder's one-line ImportError naming the missing class)."""
 
     def find_spec(self, fullname, path=None, target=None):
-        prefix, _, last = fullname.rpartition(".")
-        if prefix == __name__ and last in MORSE_BUILDER_MODULES:
+        parts = fullname.split(".")
+        # MORSE's builder modules, and the modules inside them (morse.builder.robots.morserobots ...)
+        if parts[:2] == __name__.split(".") and len(parts) > 2 and parts[2] in MORSE_BUILDER_MODULES \
+                and parts[-1][:1].islower():
             return importlib.machinery.ModuleSpec(fullname, self, is_package=True)
         return None
 
