@@ -23,6 +23,9 @@ SUITE = Path(os.environ.get("MORSE_CONFORMANCE", ROOT.parent / "shared" / "morse
 PAGE = ROOT / "docs" / "morse-conformance.md"
 FOLDERS = ["base", "robots", "failures"]
 LINE = re.compile(r"^(\S+\.py)\s+(\d+)\s+(\d+)\s*(.*)$")
+LOGS = re.compile(r"^logs: (.+)$")
+# the line that says why: an assertion's message or an exception, not unittest's "FAIL: test_x" header
+REASON = re.compile(r"^([\w.]+(Error|Exception|Failed|Failure|Preempted)\b.*|error: .*)$")
 TOTAL = re.compile(r"^(\d+) passed, (\d+) failed$")
 
 # what MORSE's own CMakeLists did not run either, and why (the issue's exceptions)
@@ -35,12 +38,28 @@ EXCEPTIONS = {
 
 def run_suite(targets: list[str]) -> str:
     command = [sys.executable, str(SUITE / "run.py"), *targets]
-    return subprocess.run(command, capture_output=True, text=True, check=False).stdout
+    done = subprocess.run(command, capture_output=True, text=True, check=False)
+    return done.stderr + done.stdout  # run.py names its log folder on stderr
+
+
+def reason(logs: Path | None, name: str, first: str) -> str:
+    """The first assertion message or exception in the file's log (run.py's column names only the test)."""
+    log = logs / (name.replace("/", "__") + ".log") if logs else None
+    if log is None or not log.is_file():
+        return first
+    for line in log.read_text(errors="replace").splitlines():
+        if REASON.match(line.strip()):
+            text = re.sub(r"^[\w.]+\.(\w+:)", r"\1", line.strip())  # MorseTestingError, not its module path
+            return re.sub(r"/\S*/morse-conformance/tests/", "", text)[:200]
+    return first
 
 
 def page(output: str, targets: list[str]) -> str:
-    rows, total = [], None
+    rows, total, logs = [], None, None
     for line in output.splitlines():
+        found = LOGS.match(line.strip())
+        if found:
+            logs = Path(found.group(1))
         m = LINE.match(line.strip())
         if m:
             rows.append((m.group(1), int(m.group(2)), int(m.group(3)), m.group(4).strip()))
@@ -71,8 +90,8 @@ def page(output: str, targets: list[str]) -> str:
     ]
     for name, ok, bad, first in rows:
         if bad:
-            reason = EXCEPTIONS.get(name, first).replace("|", "\\|")
-            lines.append(f"| `{name}` | {ok} | {bad} | {reason} |")
+            why = EXCEPTIONS.get(name) or reason(logs, name, first)
+            lines.append(f"| `{name}` | {ok} | {bad} | {why.replace('|', '/')} |")
     lines += ["", "## Files that pass", ""]
     lines += [f"- `{name}` ({ok})" for name, ok, bad, _ in rows if not bad]
     lines += ["", "## Not measured by the suite", "",

@@ -1,0 +1,26 @@
+"""tools/conformance_page.py: the page says the pass rate and, for each failing file, why (from its log)."""
+
+import importlib.util
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+spec = importlib.util.spec_from_file_location("conformance_page", ROOT / "tools" / "conformance_page.py")
+tool = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(tool)
+
+
+def test_the_page_gives_the_rate_and_each_failure_with_its_reason(tmp_path):
+    (tmp_path / "base__vw_testing.py.log").write_text(
+        "FAIL: test_vw_controller (__main__.VW_Test.test_vw_controller)\n"
+        "Traceback (most recent call last):\n"
+        "AssertionError: -0.19 != 0.0 within 0.1 delta\n")
+    output = (f"logs: {tmp_path}\n"
+              "base/pose_testing.py                           6   0  \n"
+              "base/vw_testing.py                             2   2  FAIL: test_vw_controller (__main__.VW_Test)\n"
+              "robots/segway/spiral.py                        0   2  ERROR: test_vw_controller\n"
+              "8 passed, 4 failed\n")
+    page = tool.page(output, ["base", "robots"])
+    assert "**8 passed, 4 failed** (67% of the tests; 1 of 3 files pass whole)." in page
+    assert "| `base/vw_testing.py` | 2 | 2 | AssertionError: -0.19 != 0.0 within 0.1 delta |" in page
+    assert "| `robots/segway/spiral.py` | 0 | 2 | calls `Morse.stream`" in page  # the issue's exception
+    assert "- `base/pose_testing.py` (6)" in page
