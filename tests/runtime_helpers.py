@@ -454,3 +454,16 @@ def stream_client(harness, fqn: str) -> socket.socket:
         if any(s.listening for s in harness.sim.component(fqn).out_streams):
             return client
     raise AssertionError(f"{fqn}: the stream never accepted the client")
+
+
+def read_lines(client: socket.socket, timeout: float = 5.0) -> list[bytes]:
+    """The complete lines a stream client has been sent so far (at least one, unless it closed)."""
+    client.settimeout(timeout)
+    data = b""
+    while not data.endswith(b"\n"):
+        chunk = client.recv(1 << 20)
+        if not chunk:
+            break
+        data += chunk
+        client.settimeout(0.2)
+    return data.splitlines()

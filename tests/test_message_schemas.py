@@ -4,14 +4,13 @@ and fresh; real messages from running sensors validate against them."""
 from __future__ import annotations
 
 import json
-import socket
 import subprocess
 import sys
 from pathlib import Path
 
 import jsonschema
 import pytest
-from runtime_helpers import stream_client
+from runtime_helpers import read_lines, stream_client
 
 from morsec.app.schemas import MESSAGES_DIR, REGENERATE, message_schema_files
 from morsec.component import DataField
@@ -123,18 +122,6 @@ STREAMS = {"robot.pose": ("pose", None), "robot.odometry": ("odometry", None),
 
 
 
-def _last_line(client: socket.socket) -> bytes:
-    client.settimeout(5.0)
-    data = b""
-    while not data.endswith(b"\n"):
-        chunk = client.recv(1 << 20)
-        if not chunk:
-            break
-        data += chunk
-        client.settimeout(0.2)
-    return data.splitlines()[-1]
-
-
 def _validator(cid: str, level: str | None) -> jsonschema.Draft202012Validator:
     schema = json.loads((MESSAGES / "sensors" / f"{cid}.schema.json").read_text(encoding="utf-8"))
     if level is not None:  # one level's message: its definition, in the file that holds it
@@ -147,7 +134,7 @@ def test_stream_messages_of_running_sensors_validate(tmp_path):
         clients = {fqn: stream_client(sim, fqn) for fqn in STREAMS}
         sim.command("robot.motion", v=0.5, w=0.2)
         sim.run_for(0.5)
-        messages = {fqn: json.loads(_last_line(client)) for fqn, client in clients.items()}
+        messages = {fqn: json.loads(read_lines(client)[-1]) for fqn, client in clients.items()}
         for client in clients.values():
             client.close()
     for fqn, (cid, level) in STREAMS.items():

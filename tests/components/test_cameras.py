@@ -17,7 +17,7 @@ import mujoco
 import numpy as np
 import pytest
 from pydantic import ValidationError
-from runtime_helpers import stream_client
+from runtime_helpers import read_lines, stream_client
 
 from morsec.component.catalogue import load_catalogue
 from morsec.component.services import Request
@@ -264,19 +264,6 @@ def test_a_second_capture_while_one_runs_fails(tmp_path):
 
 
 
-def _read_lines(client: socket.socket, timeout: float = 5.0) -> list[bytes]:
-    """The complete lines sent so far (at least one)."""
-    client.settimeout(timeout)
-    data = b""
-    while not data.endswith(b"\n"):
-        chunk = client.recv(1 << 20)
-        if not chunk:
-            break
-        data += chunk
-        client.settimeout(0.2)
-    return data.splitlines()
-
-
 def test_socket_message_is_morses_and_silent_when_not_capturing(tmp_path):
     scene = holder_scene("{name: cam, type: video_camera, streams: [socket], "
                          "properties: {cam_width: 8, cam_height: 6}}",
@@ -284,7 +271,7 @@ def test_socket_message_is_morses_and_silent_when_not_capturing(tmp_path):
     with simulate(scene, tmp_path) as sim:
         client = stream_client(sim, "r.cam")
         sim.step(3)
-        line = _read_lines(client)[-1]  # the last picture
+        line = read_lines(client)[-1]  # the last picture
         message = json.loads(line)
         assert list(message) == ["timestamp", "height", "width", "image", "intrinsic_matrix"]
         data = sim.data("r.cam")
@@ -414,7 +401,7 @@ def test_depth_camera_keep_resolution_and_socket_points(tmp_path):
         rows = organized["points"].reshape(12, 16, 3)
         assert not np.isnan(rows[:6]).any() and np.isnan(rows[6:]).all()  # bottom rows first
         assert plain["nb_points"] == 16 * 6
-        message = json.loads(_read_lines(client)[-1])
+        message = json.loads(read_lines(client)[-1])
         assert list(message) == ["timestamp", "height", "width", "points", "intrinsic_matrix"]
         decoded = np.frombuffer(base64.b64decode(message["points"]), dtype=np.float32).reshape(-1, 3)
         assert np.array_equal(decoded, organized["points"], equal_nan=True)

@@ -227,15 +227,8 @@ class Session:
 
     def scan(self, frame_or_namespace) -> None:
         """Name unnamed, unparented objects after the variables that hold them (MORSE's close_context)."""
-        if isinstance(frame_or_namespace, dict):
-            names = dict(frame_or_namespace)
-        else:
-            names = dict(frame_or_namespace.f_locals)
-        owner = names.get("self")
-        if is_node(owner):
-            merged = {k: v for k, v in vars(owner).items() if not k.startswith("_")}
-            merged.update(names)
-            names = merged
+        names = _visible_names(frame_or_namespace if isinstance(frame_or_namespace, dict)
+                               else frame_or_namespace.f_locals)
         for var, value in names.items():
             if var == "self" or not is_node(value) or value._kind == "environment":
                 continue
@@ -246,13 +239,7 @@ class Session:
         """Name `obj` after the variable that holds it in `frame` (MORSE's append)."""
         if frame is None or obj._auto_name is not None:
             return
-        names = dict(frame.f_locals)
-        owner = names.get("self")
-        if is_node(owner):
-            merged = {k: v for k, v in vars(owner).items() if not k.startswith("_")}
-            merged.update(names)
-            names = merged
-        for var, value in names.items():
+        for var, value in _visible_names(frame.f_locals).items():
             if var != "self" and value is obj:
                 obj._auto_name = var
                 return
@@ -342,6 +329,16 @@ def frame_position(frame) -> Position:
     except Exception:  # positions are a courtesy
         pass
     return frame.f_code.co_filename, line, col
+
+
+def _visible_names(namespace) -> dict:
+    """The variables a builder object can be named after: a namespace's, and inside a builder class's method
+    (`self` a builder object) also that object's public attributes (MORSE named them so)."""
+    names = dict(namespace)
+    owner = names.get("self")
+    if is_node(owner):
+        return {**{k: v for k, v in vars(owner).items() if not k.startswith("_")}, **names}
+    return names
 
 
 def is_node(value: Any) -> bool:
