@@ -316,6 +316,32 @@ robots:
         assert h.body_pose("c")[0] == pytest.approx([30.0, 40.0, 5.0], abs=1e-5)
 
 
+def test_first_declared_actuator_has_the_last_word(tmp_path):
+    """MORSE's feet, geodetic and ecef tests: of two teleports on one robot, both placing it at every tick,
+    the first one declared wins (MORSE ran the logic of the object created last first); once it is
+    deactivated, the other one places the robot, its command converted back from feet."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [10.0, 8.0, 0.1]
+    components:
+      - {name: pose, type: pose}
+      - {name: teleport, type: teleport}
+      - {name: teleport_mod, type: teleport, modifiers: [{name: feet}]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        h.command("r.teleport", x=100.0, y=200.0, z=50.0)
+        h.step(2)
+        assert xyz(h.data("r.pose")) == pytest.approx((100.0, 200.0, 50.0), abs=1e-9)
+        h.sim.by_name["r.teleport"].active = False
+        h.command("r.teleport_mod", x=32.8084, y=26.246, z=0.3280)
+        h.step(2)
+        assert xyz(h.data("r.pose")) == pytest.approx((32.8084 / FEET, 26.246 / FEET, 0.3280 / FEET), abs=1e-9)
+
+
 def test_odometry_noise_scale_and_drift(tmp_path):
     """A helicopter flying straight 1 m/s for 2 s: odometry scaled by `factor`; a heading drift of
     0.001 rad per tick adds up to 0.12 rad over 120 ticks."""
