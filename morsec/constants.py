@@ -29,7 +29,8 @@ MAX_REQUESTS_PER_POLL = 200  # request lines of one client handled per poll: the
 MAX_PENDING_REQUESTS = 1000  # asynchronous requests (time sleep ...) one client may have running
 
 # values a request may put into the physics (refused beyond, before they reach MuJoCo)
-MAX_POSITION = 1e6  # m, or rad for joint angles: |coordinate|
+MAX_POSITION = 1e8  # m, or rad for joint angles: |coordinate| (Earth-scale: a geodetic teleport to the
+# other side of the globe is 1.3e7 m from the scene origin, as MORSE's magnetometer test does)
 MAX_SPEED = 1e4  # m/s or rad/s: |component of a velocity|
 MAX_FORCE = 1e8  # N or N m: |component of a force or torque|
 

@@ -13,6 +13,8 @@ from morsec.errors import SceneError
 from morsec.testing import simulate
 
 LAT, LON, ALT = 43.6, 1.4333, 135.0
+# the origin as MORSE held it: numbers in environment properties are Blender game properties, 32-bit floats
+LAT32, LON32, ALT32 = (float(np.float32(v)) for v in (LAT, LON, ALT))
 A = 6378137.0
 F = 1 / 298.257223563
 E2 = F * (2 - F)
@@ -37,8 +39,8 @@ def enu_axes(lat_deg: float, lon_deg: float):
 
 
 def ecef_of_scene(x: float, y: float, z: float) -> np.ndarray:
-    e, n, u = enu_axes(LAT, LON)
-    return ecef_of(LAT, LON, ALT) + x * e + y * n + z * u
+    e, n, u = enu_axes(LAT32, LON32)
+    return ecef_of(LAT32, LON32, ALT32) + x * e + y * n + z * u
 
 
 def geodetic_of(p) -> tuple[float, float, float]:
@@ -314,6 +316,32 @@ robots:
         assert h.body_pose("c")[0] == pytest.approx([30.0, 40.0, 5.0], abs=1e-5)
 
 
+def test_first_declared_actuator_has_the_last_word(tmp_path):
+    """MORSE's feet, geodetic and ecef tests: of two teleports on one robot, both placing it at every tick,
+    the first one declared wins (MORSE ran the logic of the object created last first); once it is
+    deactivated, the other one places the robot, its command converted back from feet."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [10.0, 8.0, 0.1]
+    components:
+      - {name: pose, type: pose}
+      - {name: teleport, type: teleport}
+      - {name: teleport_mod, type: teleport, modifiers: [{name: feet}]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        h.command("r.teleport", x=100.0, y=200.0, z=50.0)
+        h.step(2)
+        assert xyz(h.data("r.pose")) == pytest.approx((100.0, 200.0, 50.0), abs=1e-9)
+        h.sim.by_name["r.teleport"].active = False
+        h.command("r.teleport_mod", x=32.8084, y=26.246, z=0.3280)
+        h.step(2)
+        assert xyz(h.data("r.pose")) == pytest.approx((32.8084 / FEET, 26.246 / FEET, 0.3280 / FEET), abs=1e-9)
+
+
 def test_odometry_noise_scale_and_drift(tmp_path):
     """A helicopter flying straight 1 m/s for 2 s: odometry scaled by `factor`; a heading drift of
     0.001 rad per tick adds up to 0.12 rad over 120 ticks."""
@@ -376,6 +404,44 @@ def test_bad_modifiers_are_build_errors(tmp_path, component, modifier, message):
     assert message in text
 
 
+def test_geodetic_origin_is_held_as_morse_held_it(tmp_path):
+    """MORSE's ecef_testing figures: its environment properties were Blender game properties (32-bit floats),
+    so longitude 43.6 was 43.59999847 and a GPS at (10, 8, 0.1) read x = 4617522.748 in ECEF (not the
+    4617522.631 of a 64-bit origin, 12 cm away). A string keeps every digit."""
+    text = """
+environment:
+  name: empty
+  time: {strategy: fixed_step, relative: true}
+  properties: {longitude: %s, latitude: %s, altitude: 135.0}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [10.0, 8.0, 0.1]
+    components:
+      - {name: ecef, type: gps, modifiers: [{name: ECEF}]}
+      - {name: geodetic, type: gps, modifiers: [{name: geodetic}]}
+"""
+    (tmp_path / "numbers").mkdir()
+    (tmp_path / "strings").mkdir()
+    with simulate(text % (43.6, 1.4333), tmp_path / "numbers") as h:
+        h.step()
+        ecef, geodetic = h.data("r.ecef"), h.data("r.geodetic")
+    assert xyz(ecef) == pytest.approx((4617522.748, 4397221.061, 158481.296875), abs=0.02)  # MORSE's test
+    assert (geodetic["x"], geodetic["y"]) == pytest.approx((43.6000883, 1.433372470), abs=2e-6)
+    assert geodetic["z"] == pytest.approx(135.1, abs=0.02)
+    with simulate(text % ('"43.6"', '"1.4333"'), tmp_path / "strings") as h:
+        h.step()
+        exact = h.data("r.ecef")
+    assert xyz(exact) == pytest.approx(tuple(ecef_of(1.4333, 43.6, 135.0) + ecef_offset(1.4333, 43.6, 10, 8, 0.1)),
+                                       abs=1e-6)
+    assert exact["x"] == pytest.approx(4617522.631, abs=0.001)
+
+
+def ecef_offset(lat: float, lon: float, x: float, y: float, z: float) -> np.ndarray:
+    e, n, u = enu_axes(lat, lon)
+    return x * e + y * n + z * u
+
+
 def test_geodetic_modifier_builds_with_environment_properties(tmp_path):
     """With the environment's geodetic properties (what the 'ecef' error above asks for) the build records
     the modifier on its component and the properties in the scene, and the simulation applies it: the
@@ -400,9 +466,9 @@ robots:
     assert (recorded.name, recorded.cls) == ("geocentric", "morsec.modifiers.coordinates:ToGeocentric")
     assert components["r.plain"].modifiers == []
     assert manifest.scene["environment"]["properties"] == {"longitude": LON, "latitude": LAT, "altitude": ALT}
-    ecef = ecef_of(LAT, LON, ALT)
+    ecef = ecef_of(LAT32, LON32, ALT32)
     assert xyz(plain) == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
-    assert xyz(converted) == pytest.approx((LON, math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))),
+    assert xyz(converted) == pytest.approx((LON32, math.degrees(math.atan2(ecef[2], math.hypot(ecef[0], ecef[1]))),
                                             float(np.linalg.norm(ecef))), abs=1e-6)
 
 

@@ -114,7 +114,7 @@ def test_time_scale_is_bounded(sim):
 # ------------------------------------------------------------------------------- values for the physics
 def test_absurd_positions_and_speeds_are_refused(sim):
     with sim.client() as c:
-        for args in (["crate", [1e300, 0, 0]], ["crate", [1e7, 0, 0]], ["other", [0, 0, 0], [1e300, 0, 0]]):
+        for args in (["crate", [1e300, 0, 0]], ["crate", [1e9, 0, 0]], ["other", [0, 0, 0], [1e300, 0, 0]]):
             message = failed(c, f"p simulation set_object_position {json.dumps(args)}")
             assert "must be finite and within" in message, message
     with sim.stream("robot.motion") as motion:

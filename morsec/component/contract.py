@@ -286,6 +286,10 @@ class Environment(Component):
 
     kind = "environment"
     template: ClassVar[str] = "environment.xml.j2"
+    # the passive objects the world holds, as entries of a scene's `objects:` (name, type, translate, size,
+    # color, properties ...): MORSE's named .blend objects with their game properties, which sensors find
+    # (the semantic camera's RedBox); a scene object of the same name replaces one
+    objects: ClassVar[tuple[dict, ...]] = ()
 
 
 class Prop(Component):

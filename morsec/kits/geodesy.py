@@ -4,6 +4,11 @@ The scene frame is a local tangent plane at the environment's geodetic origin (p
 `latitude` in degrees, `altitude` in metres). With `angle_against_north` = 0 the scene's x axis points
 East and y North (ENU, as MORSE's Blender world); a non-zero angle (degrees) turns the scene's axes
 clockwise seen from above: y then points that many degrees east of true north.
+
+These properties are read as MORSE read them: a number is a Blender game property, a 32-bit float (43.6
+becomes 43.59999847...: about 17 cm east of 43.6 at the equator, and MORSE's positions, ECEF and geodetic
+outputs all start from that origin); a string (`longitude: "43.6"`) keeps every digit, as MORSE advised for
+its UTM offsets.
 """
 
 from __future__ import annotations
@@ -54,6 +59,14 @@ def enu_rotation(lat_deg: float, lon_deg: float) -> np.ndarray:
     ])
 
 
+def blender_float(value) -> float:
+    """An environment property as MORSE's scene held it: a number becomes a Blender game property (a 32-bit
+    float); a string is read with all its digits."""
+    if isinstance(value, str):
+        return float(value)
+    return float(np.float32(value))
+
+
 @dataclass
 class GeoFrame:
     latitude: float
@@ -67,8 +80,8 @@ class GeoFrame:
         if missing:
             raise ValueError("geodetic conversions need the environment properties longitude, latitude and "
                              f"altitude (missing: {', '.join(missing)})")
-        return cls(float(props["latitude"]), float(props["longitude"]), float(props["altitude"]),
-                   float(props.get("angle_against_north", 0.0)))
+        return cls(blender_float(props["latitude"]), blender_float(props["longitude"]),
+                   blender_float(props["altitude"]), blender_float(props.get("angle_against_north", 0.0)))
 
     def __post_init__(self):
         self.origin = geodetic_to_ecef(self.latitude, self.longitude, self.altitude)

@@ -149,7 +149,10 @@ class Simulation:
             self.poller.close()
             raise RuntimeFailure(f"{build_dir}: {err}") from None
         self.by_name = {c.fqn: c for c in self.components}
-        self.actuators = [c for c in sorted(self.components, key=lambda c: c.fqn) if c.kind == "actuator"]
+        # actuators act in the reverse of the scene's order, as MORSE's did (Blender ran the logic of the object
+        # created last first): of two actuators driving the same thing, the one declared first has the last
+        # word (MORSE's ecef, feet and geodetic tests teleport with the first of two teleports)
+        self.actuators = [c for c in reversed(self.components) if c.kind == "actuator"]
         # sensors that gather others' data (tick_last: compound) tick after them in each frame
         last = lambda c: bool(getattr(c.instance, "tick_last", False))  # noqa: E731
         self.sensors = [c for c in sorted(self.components, key=lambda c: (last(c), c.fqn)) if c.kind == "sensor"]

@@ -35,6 +35,24 @@ def add_robot_defaults(data: Any, cat: Catalogue) -> None:
         components.extend(copy.deepcopy(c) for c in defaults if c["name"] not in named)
 
 
+def add_environment_objects(data: Any, cat: Catalogue) -> Any:
+    """Before validation: the scene data with the environment type's `objects` that the scene does not name
+    itself appended to its own (a new mapping: the scene as written, which `convert` writes, keeps only
+    what it says)."""
+    import copy
+    if not isinstance(data, dict):
+        return data
+    env = data.get("environment", {})
+    name = env.get("name", "empty") if isinstance(env, dict) else None
+    eid = cat.resolve("environments", name) if isinstance(name, str) else None
+    held = cat.get("environments", eid).objects if eid else ()
+    objects = data.get("objects", [])
+    if not held or not isinstance(objects, list):
+        return data
+    named = {o.get("name") or o.get("type") for o in objects if isinstance(o, dict)}
+    return {**data, "objects": objects + [copy.deepcopy(o) for o in held if o["name"] not in named]}
+
+
 def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     def fail(path: tuple, message: str) -> NoReturn:
         pos = smap.find(path) if smap else None

@@ -156,3 +156,31 @@ def test_renders_nothing(tmp_path, monkeypatch):
         sim.step(3)
         assert set(seen(sim)) == {"FRONT"}
         assert sim.data("r.sem")["intrinsic_matrix"] == [[280.0, 0.0, 128.0], [0.0, 280.0, 128.0], [0.0, 0.0, 1.0]]
+
+
+def test_sees_the_named_boxes_of_morses_boxes_environment(tmp_path):
+    """MORSE's semantic_camera_testing: in `indoors-1/boxes` a camera at the origin turned 5/4 pi sees the
+    box MORSE's .blend called BlueBox (game property Object = 'BlueBox'), turned pi from (-5, 0) RedBox;
+    a scene object of the same name replaces the environment's."""
+    text = """environment: {name: indoors-1/boxes, time: {strategy: fixed_step}}
+robots:
+  - name: r
+    type: fake_robot
+    translate: [0.0, 0.0, 0.86]
+    rotate: [0.0, 0.0, 3.9269908169872414]
+    components:
+      - {name: sem, type: semantic_camera}
+      - {name: tp, type: teleport}
+"""
+    with simulate(text, tmp_path) as sim:
+        sim.step(2)
+        objects = seen(sim)
+        assert set(objects) == {"BlueBox"}
+        assert objects["BlueBox"]["position"][:2] == pytest.approx([-3.5, -3.0], abs=1e-9)
+        sim.command("r.tp", x=-5.0, y=0.0, z=0.86, roll=0.0, pitch=0.0, yaw=math.pi)
+        sim.step(2)
+        assert set(seen(sim)) == {"RedBox"}
+    moved = text + "objects:\n  - {name: BlueBox, type: box, translate: [-3.5, 3.0, 0.5], properties: {Object: true}}\n"
+    with simulate(moved, tmp_path) as sim:
+        sim.step(2)
+        assert seen(sim) == {}

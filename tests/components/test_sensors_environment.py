@@ -70,6 +70,32 @@ robots:
     assert (north["x"], north["y"], north["z"]) == pytest.approx((-wmm.y, wmm.x, wmm.z), abs=1.0)
 
 
+def test_magnetometer_gives_morse_figures(tmp_path):
+    """MORSE's magnetometer_testing: a date of 2015.0 reads WMM2015 as first published (the model MORSE
+    shipped; its test values are that release's), at geodetic points thousands of km from the scene origin
+    reached by a teleport with the `geodetic` modifier (x = longitude, y = latitude, z = altitude)."""
+    text = """
+environment:
+  name: empty
+  time: {strategy: fixed_step, relative: true}
+  properties: {longitude: 43.6, latitude: 1.4333, altitude: 135.0}
+robots:
+  - name: r
+    type: fake_robot
+    components:
+      - {name: mag, type: magnetometer, properties: {date: 2015.0}}
+      - {name: tp, type: teleport, modifiers: [{name: geodetic}]}
+"""
+    expected = {(0, 80, 0): (6627.1, -445.9, 54432.3), (120, 0, 0): (39518.2, 392.9, -11252.4),
+                (240, -80, 0): (5797.3, 15761.1, -52919.1), (0, 80, 100000): (6314.3, -471.6, 52269.8)}
+    with simulate(text, tmp_path) as h:
+        for (lon, lat, alt), field in expected.items():
+            h.command("r.tp", x=float(lon), y=float(lat), z=float(alt), roll=0.0, pitch=0.0, yaw=0.0)
+            h.step(2)
+            mag = h.data("r.mag")
+            assert (mag["x"], mag["y"], mag["z"]) == pytest.approx(field, abs=0.1), (lon, lat, alt)
+
+
 def test_magnetometer_needs_geodetic_properties(tmp_path):
     text = """
 environment: {name: empty}

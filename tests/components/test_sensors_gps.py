@@ -13,6 +13,8 @@ from morsec.errors import RuntimeFailure
 from morsec.testing import simulate
 
 LAT, LON, ALT = 43.6, 1.4333, 135.0
+# the origin the simulation uses: numbers in environment properties are 32-bit floats, as MORSE's
+LAT32, LON32, ALT32 = (float(np.float32(v)) for v in (LAT, LON, ALT))
 A = 6378137.0
 F = 1 / 298.257223563
 E2 = F * (2 - F)
@@ -46,11 +48,11 @@ def geodetic_of(p) -> tuple[float, float, float]:
 
 
 def expected_geodetic(east: float, north: float, up: float) -> tuple[float, float, float]:
-    lat, lon = math.radians(LAT), math.radians(LON)
+    lat, lon = math.radians(LAT32), math.radians(LON32)
     e = np.array([-math.sin(lon), math.cos(lon), 0.0])
     n = np.array([-math.sin(lat) * math.cos(lon), -math.sin(lat) * math.sin(lon), math.cos(lat)])
     u = np.array([math.cos(lat) * math.cos(lon), math.cos(lat) * math.sin(lon), math.sin(lat)])
-    return geodetic_of(ecef_of(LAT, LON, ALT) + east * e + north * n + up * u)
+    return geodetic_of(ecef_of(LAT32, LON32, ALT32) + east * e + north * n + up * u)
 
 
 def scene(extra_env: str = "", robot: str = "") -> str:
@@ -95,8 +97,8 @@ def test_gps_levels_at_a_known_point(tmp_path):
         assert data["velocity"] == [0.0, 0.0, 0.0]
     # 300 m east, 400 m south of the origin: about 0.0037 deg east, 0.0036 deg south; a little higher than
     # 25 m above the origin because the Earth curves away below the tangent plane (+ d^2 / 2R ≈ 0.02 m)
-    assert lon - LON == pytest.approx(math.degrees(300.0 / (math.cos(math.radians(LAT)) * 6388838.0)), rel=1e-3)
-    assert lat - LAT == pytest.approx(math.degrees(-400.0 / 6367000.0), rel=1e-3)
+    assert lon - LON32 == pytest.approx(math.degrees(300.0 / (math.cos(math.radians(LAT)) * 6388838.0)), rel=1e-3)
+    assert lat - LAT32 == pytest.approx(math.degrees(-400.0 / 6367000.0), rel=1e-3)
     assert alt == pytest.approx(ALT + 25.0 + 500.0 ** 2 / (2 * 6371000.0), abs=2e-3)
     # relative time: the timestamp is 2/60 s after 1 January 1970, 00:00:00 UTC
     assert (ext["date"], ext["time"]) == ("010170", "000000")
