@@ -129,6 +129,16 @@ def test_sync_services(morse):
     assert morse.rpc("simulation", "list_robots") == ["robot", "x", "x_001"]
 
 
+def test_a_service_called_without_its_arguments_fails_as_in_morse(morse):
+    """MORSE's words, which pymorse turns into MorseServiceFailed (`wrong # of parameters` is a TypeError)."""
+    with pytest.raises(MorseServiceFailed) as failed:
+        morse.rpc("communication", "distance_and_view")  # MORSE's communication_service_testing
+    assert not isinstance(failed.value, TypeError)
+    assert "parameters expected for service distance_and_view!" in str(failed.value)
+    with pytest.raises(MorseServiceFailed, match="parameters expected for service set_speed!"):
+        morse.robot.motion.set_speed().result(timeout=10)
+
+
 def test_fixed_step_service_calls_and_sleeps_keep_their_order(servers):
     """MORSE's vw_testing: `set_speed(v, 0); sleep(2); stop()` drives 2 m in fixed_step too. pymorse sends
     set_speed and stop from its thread pool, sleep from this thread: set_speed often reaches the simulation

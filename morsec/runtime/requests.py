@@ -74,7 +74,12 @@ class RequestManager:
         try:
             inspect.signature(method).bind(*request.args)
         except TypeError as err:
-            request.reply(request.id, FAILED, f"wrong # of parameters for {request.component}.{request.service}: {err}")
+            if not request.args:  # MORSE's words (pymorse raises MorseServiceFailed, not TypeError)
+                request.reply(request.id, FAILED, f"Socket service manager: parameters expected for service "
+                              f"{request.service}! {request.component}.{request.service}: {err}")
+            else:
+                request.reply(request.id, FAILED,
+                              f"wrong # of parameters for {request.component}.{request.service}: {err}")
             return
         request.info = info
         if info.asynchronous:
