@@ -232,6 +232,30 @@ def test_a_client_that_sleeps_then_goes_silent_slows_the_loop_no_longer_than_the
         assert sim_rate(probe, 0.3) > 5
 
 
+def test_new_actuator_stream_connections_are_waited_for_briefly(launch):
+    """A new connection to an actuator stream: the loop waits for its first message (pymorse's lags behind
+    the request that follows it), SLEEP_HOLD_WAIT at most; connecting again and again cannot stop it."""
+    sim = launch(paced_sim)
+    with sim.client() as probe:
+        with sim.stream("robot.motion") as motion:
+            t0 = probe.ok("time", "now")
+            time.sleep(0.05)
+            assert probe.ok("time", "now") - t0 < 0.1  # waiting for its first line (else 5 s or more)
+            motion.send('{"v": 0.0, "w": 0.0}\n')
+            wait_until(lambda: probe.ok("time", "now") > t0 + 2.0, timeout=5, message="going on after the line")
+        opened = []
+        try:
+            t0, w0 = probe.ok("time", "now"), time.monotonic()
+            while time.monotonic() - w0 < 2.0:  # a silent connection every 50 ms
+                opened.append(sim.stream("robot.motion"))
+                time.sleep(0.05)
+            rate = (probe.ok("time", "now") - t0) / (time.monotonic() - w0)
+        finally:
+            for sock in opened:
+                sock.close()
+    assert rate > 5, f"{rate:.1f} simulated s per wall s"
+
+
 def test_a_client_that_reads_a_stream_after_its_sleep_reads_the_next_frame(launch):
     """`sleep; pose.get()`: the stream needs frames; they come at the wall clock's pace, the first one right
     after the sleep's end. A client that reads without saying anything first is waited for less and less."""

@@ -142,6 +142,7 @@ class SleepHold:
         self.grace = grace
         self.frozen: dict[Any, float] = {}  # client -> wall-clock deadline of the wait for its first word
         self.opened: dict[Any, float] = {}  # new actuator stream connection -> deadline of the wait for its message
+        self.opened_quiet_until = 0.0  # wall clock: no new connection is waited for before (one ran out)
         self.awake: dict[Any, float] = {}  # client -> wall-clock deadline of its best_effort phase
         self.misses: dict[Any, int] = {}  # client -> its waits in a row that ran out
         self.holds = 0  # for `time statistics`: sleeps that ended so
@@ -172,8 +173,12 @@ class SleepHold:
     def stream_opened(self, connection: Any) -> None:
         """A client connected to an actuator stream: its first message is probably on its way (pymorse
         connects a stream when it is first used, and its message leaves a few milliseconds after the
-        request that follows it on the service connection). The loop waits for it, `wait` at most."""
-        self.opened[connection] = _time.perf_counter() + self.wait
+        request that follows it on the service connection). The loop waits for it, `wait` at most; after
+        such a wait ran out, connections opened within `grace` are not waited for (connecting again and
+        again cannot stop the loop)."""
+        now = _time.perf_counter()
+        if now >= self.opened_quiet_until:
+            self.opened[connection] = now + self.wait
 
     def stream_heard(self, connection: Any) -> None:
         """A message arrived on an actuator stream: whose it is cannot be told, so it is the first word of
@@ -208,6 +213,7 @@ class SleepHold:
         for connection, deadline in list(self.opened.items()):
             if deadline <= now:
                 del self.opened[connection]
+                self.opened_quiet_until = now + self.grace
         waits = [*self.frozen.values(), *self.opened.values()]
         return min(waits) - now if waits else 0.0
 
