@@ -438,7 +438,10 @@ class Simulation:
             self.close()
 
     def _delay(self) -> float:
-        paced = self.hold is not None and bool(self.hold.awake) and self.hold.pacing()
+        """Wall-clock seconds before the next frame: best_effort's, or fixed_step's (none, or the wall
+        clock's pace while a client is between two sleeps; a lockstep client paces the loop itself)."""
+        paced = (self.hold is not None and bool(self.hold.awake) and not (self.sync is not None and self.sync.engaged)
+                 and self.hold.pacing())
         return self.clock.delay(paced)
 
     def _wait(self, delay: float) -> None:
