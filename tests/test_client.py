@@ -311,6 +311,9 @@ def test_a_failing_service_raises_morse_service_failed_with_morse_message(sim):
     with pytest.raises(TypeError, match="wrong # of parameters") as wrong:
         sim.robot.motion.set_speed(1.0).result(timeout=10)
     assert isinstance(wrong.value, MorseServiceFailed)
+    with pytest.raises(MorseServiceFailed, match="parameters expected for service set_speed!") as expected:
+        sim.robot.motion.set_speed().result(timeout=10)  # MORSE's words: not a TypeError, as in pymorse
+    assert not isinstance(expected.value, TypeError)
 
 
 def test_cancel_preempts_an_async_service(sim):

@@ -109,6 +109,22 @@ def test_response_bytes(sim, client):
     assert status == "FAILED" and "has not been registered in Socket service manager" in message
 
 
+def test_a_service_called_without_its_arguments_answers_morse_words(sim, client):
+    """MORSE's `parameters expected for service X!` (pymorse: MorseServiceFailed), with or without `[]`;
+    too few arguments given is `wrong # of parameters` (pymorse: TypeError)."""
+    for line in ("p1 communication distance_and_view\n", "p2 communication distance_and_view []\n"):
+        client.send(line)
+        rid, status, message = parse_response(client.line())
+        assert status == "FAILED", (rid, message)
+        assert message.startswith("Socket service manager: parameters expected for service distance_and_view! ")
+        assert "wrong # of parameters" not in message
+    client.send("p3 communication distance_and_view [\"robot\"]\n")
+    _, status, message = parse_response(client.line())
+    assert status == "FAILED" and message.startswith("wrong # of parameters for communication.distance_and_view")
+    client.send("p4 simulation list_robots []\n")  # a service without parameters is not concerned
+    assert client.line() == 'p4 SUCCESS ["robot", "rover"]'
+
+
 def test_falsy_results_are_left_out(sim, client):
     client.send("f1 simulation deactivate [\"robot.pose\"]\n")  # returns None
     assert client.raw_line() == b"f1 SUCCESS\n"

@@ -129,6 +129,42 @@ def test_sync_services(morse):
     assert morse.rpc("simulation", "list_robots") == ["robot", "x", "x_001"]
 
 
+def test_a_service_called_without_its_arguments_fails_as_in_morse(morse):
+    """MORSE's words, which pymorse turns into MorseServiceFailed (`wrong # of parameters` is a TypeError)."""
+    with pytest.raises(MorseServiceFailed) as failed:
+        morse.rpc("communication", "distance_and_view")  # MORSE's communication_service_testing
+    assert not isinstance(failed.value, TypeError)
+    assert "parameters expected for service distance_and_view!" in str(failed.value)
+    with pytest.raises(MorseServiceFailed, match="parameters expected for service set_speed!"):
+        morse.robot.motion.set_speed().result(timeout=10)
+
+
+def test_fixed_step_service_calls_and_sleeps_keep_their_order(servers):
+    """MORSE's vw_testing: `set_speed(v, 0); sleep(2); stop()` drives 2 m in fixed_step too. pymorse sends
+    set_speed and stop from its thread pool, sleep from this thread: set_speed often reaches the simulation
+    after the sleep (up to tens of ms, a second or more of simulated time); the loop, held since the last
+    sleep ended, waits for it (pymorse numbers its requests)."""
+    server = servers["fixed_step"]
+    with server.client() as client:
+        client.ok("robot.motion", "stop")
+        client.ok("simulation", "reset_objects")
+    sim = Morse("localhost", server.service_port)
+    try:
+        motion, pose = sim.robot.motion, sim.robot.pose
+        sim.sleep(0.2)
+        x0 = pose.get(timeout=10)["x"]
+        for v in (1.0, -1.0, 1.0, -1.0):
+            motion.set_speed(v, 0.0)
+            sim.sleep(2.0)
+            motion.stop()
+            sim.sleep(0.1)
+            x = pose.get(timeout=10)["x"]
+            assert x - x0 == pytest.approx(2.0 * v, abs=0.05), (v, x0, x)
+            x0 = x
+    finally:
+        sim.close(cancel_async_services=True)
+
+
 def _async(morse, component: str, service: str, *args):
     """A future for any service, the way pymorse calls a component's services."""
     return morse.executor.submit(morse._rpc_process, morse._rpc_request(component, service, *args))

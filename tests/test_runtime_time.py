@@ -26,6 +26,8 @@ from runtime_helpers import (
     wait_until,
 )
 
+from morsec.constants import SLEEP_HOLD_FLOOR, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
+
 DT = 1.0 / 60
 
 
@@ -156,6 +158,126 @@ def test_lockstep(launch):
                     pose.line(timeout=0.3)
             t0 = client.ok("time", "now")
         wait_until(lambda: client.ok("time", "now") > t0 + 0.5, timeout=10, message="free running after disconnect")
+
+
+# ------------------------------------------------------------------ fixed_step: clients pacing with time sleep
+def paced_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(strategy="fixed_step"), "paced"), tmp)  # ATRV, pose, motion_vw
+
+
+def pose_x(sim: Morsec) -> float:
+    with sim.stream("robot.pose") as pose:
+        return pose.json()["x"]
+
+
+def test_fixed_step_commands_apply_where_the_sleep_ended(launch):
+    """MORSE's vw_testing in fixed_step, at a hundred times real time: set_speed, sleep 2, stop drives 2 m,
+    as in best_effort. The stop arrives a round trip after the sleep's answer; meanwhile the loop waits."""
+    sim = launch(paced_sim)
+    with sim.client() as client, sim.stream("robot.motion") as motion:
+        assert client.ok("time", "mode") == "Fixed Simulation Step"
+        client.ok("time", "sleep", 0.5)  # landed; the loop now waits for this client's next sleep
+        x0 = pose_x(sim)
+        client.ok("time", "sleep", 0.1)
+        client.ok("robot.motion", "set_speed", 1.0, 0.0)  # services
+        client.ok("time", "sleep", 2.0)
+        client.ok("robot.motion", "stop")
+        x1 = pose_x(sim)
+        assert x1 - x0 == pytest.approx(2.0, abs=0.05), (x0, x1)
+        client.ok("time", "sleep", 0.1)
+        motion.send('{"v": -1.0, "w": 0.0}\n')  # the actuator's stream
+        client.ok("time", "sleep", 2.0)
+        motion.send('{"v": 0.0, "w": 0.0}\n')
+        client.ok("time", "sleep", 0.1)
+        x2 = pose_x(sim)
+        assert x2 - x1 == pytest.approx(-2.0, abs=0.05), (x1, x2)
+        stats = client.ok("time", "statistics")
+    assert stats["real_time_factor"] > 5, stats  # it did run fast
+    assert stats["sleep_holds"] >= 6, stats
+
+
+def sim_rate(probe, seconds: float) -> float:
+    """Simulated seconds per wall-clock second over about `seconds` of wall time."""
+    t0, w0 = probe.ok("time", "now"), time.monotonic()
+    time.sleep(seconds)
+    return (probe.ok("time", "now") - t0) / (time.monotonic() - w0)
+
+
+def test_a_client_that_sleeps_then_goes_silent_slows_the_loop_no_longer_than_the_grace(launch):
+    """After its sleep the loop waits for the client's first word (SLEEP_HOLD_WAIT), then follows the wall
+    clock until its next sleep, for SLEEP_HOLD_GRACE at most: then as fast as it can again."""
+    sim = launch(paced_sim)
+    with sim.client() as probe:
+        assert sim_rate(probe, 0.3) > 5  # fixed_step: far faster than real time
+        with sim.client() as sleeper:
+            end = probe.ok("time", "now") + 0.2
+            sleeper.ok("time", "sleep", 0.2)  # then nothing
+            w0 = time.monotonic()
+            assert probe.ok("time", "now") == pytest.approx(end, abs=0.15)  # waiting, then at the wall clock's pace
+            assert sim_rate(probe, 0.3) < 1.5
+            time.sleep(max(0.0, w0 + SLEEP_HOLD_GRACE + 0.2 - time.monotonic()))
+            assert sim_rate(probe, 0.3) > 5
+            stats = probe.ok("time", "statistics")
+            assert (stats["sleep_holds"], stats["sleep_holds_silent"], stats["sleep_holds_overtime"]) == (1, 1, 1)
+            # a client that pipelined many sleeps slows the loop after its last one only
+            sleeper.send("".join(f"p{i} time sleep [{0.05 * i}]\n" for i in range(1, 101)))
+            t0, w0 = probe.ok("time", "now"), time.monotonic()
+            assert [sleeper.line() for _ in range(100)][-1] == "p100 SUCCESS"
+            wait_until(lambda: probe.ok("time", "now") > t0 + 10.0, timeout=20, message="10 simulated s")
+            assert time.monotonic() - w0 < SLEEP_HOLD_GRACE + 5.0  # 10 simulated s, at most one grace of them paced
+            assert probe.ok("time", "statistics")["sleep_holds"] == 2
+        # a client that leaves as soon as its sleep ends slows nothing down
+        with sim.client() as leaver:
+            leaver.ok("time", "sleep", 0.1)
+        assert sim_rate(probe, 0.3) > 5
+
+
+def test_new_actuator_stream_connections_are_waited_for_briefly(launch):
+    """A new connection to an actuator stream: the loop waits for its first message (pymorse's lags behind
+    the request that follows it), SLEEP_HOLD_WAIT at most; connecting again and again cannot stop it."""
+    sim = launch(paced_sim)
+    with sim.client() as probe:
+        with sim.stream("robot.motion") as motion:
+            t0 = probe.ok("time", "now")
+            time.sleep(0.05)
+            assert probe.ok("time", "now") - t0 < 0.1  # waiting for its first line (else 5 s or more)
+            motion.send('{"v": 0.0, "w": 0.0}\n')
+            wait_until(lambda: probe.ok("time", "now") > t0 + 2.0, timeout=5, message="going on after the line")
+        opened = []
+        try:
+            t0, w0 = probe.ok("time", "now"), time.monotonic()
+            while time.monotonic() - w0 < 2.0:  # a silent connection every 50 ms
+                opened.append(sim.stream("robot.motion"))
+                time.sleep(0.05)
+            rate = (probe.ok("time", "now") - t0) / (time.monotonic() - w0)
+        finally:
+            for sock in opened:
+                sock.close()
+    assert rate > 5, f"{rate:.1f} simulated s per wall s"
+
+
+def test_a_client_that_reads_a_stream_after_its_sleep_reads_the_next_frame(launch):
+    """`sleep; pose.get()`: the stream needs frames; they come at the wall clock's pace, the first one right
+    after the sleep's end. A client that reads without saying anything first is waited for less and less."""
+    sim = launch(paced_sim)
+    with sim.client() as client, sim.stream("robot.pose") as pose:
+        w0 = time.monotonic()
+        for _ in range(20):
+            client.ok("time", "sleep", 0.05)
+            ended = client.ok("time", "now")  # its first word: the loop now follows the wall clock
+            while (stamp := pose.json()["timestamp"]) <= ended + 1e-6:
+                pass  # older messages still on their way
+            assert stamp == pytest.approx(ended + DT, abs=1e-5)
+        assert time.monotonic() - w0 < 20 * (SLEEP_HOLD_WAIT + 2 * DT) + 3.0
+        w0 = time.monotonic()
+        for _ in range(20):
+            client.ok("time", "sleep", 0.05)
+            pose.drain()
+            pose.json()
+        waits = sum(max(SLEEP_HOLD_FLOOR, SLEEP_HOLD_WAIT / 2 ** max(0, n - 1)) for n in range(20))
+        assert time.monotonic() - w0 < waits + 20 * 2 * DT + 3.0
+        stats = client.ok("time", "statistics")
+    assert stats["sleep_holds"] == 40 and stats["sleep_holds_silent"] >= 15, stats
 
 
 def test_sigterm_exits_0(launch):

@@ -8,7 +8,8 @@ every stream's endpoint when the scene is built, and opens them when the build r
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar, Protocol
 
@@ -37,6 +38,12 @@ class RunContext:
     output_dir: Path  # where file outputs go
     port_base: int | None = None  # --port-base
     service_port: int | None = None  # --service-port
+    # fixed_step's loop waits, briefly, for what a client sends right after its `time sleep` ended and for
+    # the first message of a client that has just connected to an actuator stream: the middleware tells
+    # it of actuator stream connections (the connection object) opening, sending a message, and closing
+    stream_opened: Callable[[Any], None] = field(default=lambda connection: None)
+    stream_heard: Callable[[Any], None] = field(default=lambda connection: None)
+    stream_closed: Callable[[Any], None] = field(default=lambda connection: None)
 
 
 class OutStream(Protocol):

@@ -151,6 +151,7 @@ class Server:
             conn = Connection(sock)
             self.clients.append(conn)
             self.poller.register(sock, lambda s, c=conn: self._readable(c))
+            self.accepted(conn)
 
     def _readable(self, conn: Connection) -> None:
         data = conn.receive()
@@ -158,6 +159,9 @@ class Server:
             self.drop(conn)
         else:
             self.received(conn, data)
+
+    def accepted(self, conn: Connection) -> None:
+        """A client connected."""
 
     def received(self, conn: Connection, data: bytes) -> None:
         """New bytes from a client."""

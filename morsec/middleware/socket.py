@@ -65,7 +65,8 @@ class Socket(Middleware):
             if port > MAX_PORT:
                 raise MorsecError(f"--port-base {base} puts the stream of {component} on port {port}, beyond "
                                   f"{MAX_PORT}: choose a lower --port-base")
-        stream = SocketStream(self.context.poller, component, direction, self.context.bind, port, hint_only=True)
+        stream = SocketStream(self.context.poller, component, direction, self.context.bind, port, hint_only=True,
+                              context=self.context)
         self.streams.setdefault(component, []).append(stream)
         return stream
 

@@ -6,11 +6,15 @@ import json
 import logging
 import math
 import re
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from morsec.constants import MAX_INPUT_LINE, MAX_JSON_DEPTH, MAX_REQUEST_LINE
 from morsec.middleware.poller import Connection, Poller, Server
+
+if TYPE_CHECKING:
+    from morsec.middleware.base import RunContext
 
 log = logging.getLogger("morsec.middleware.socket")
 
@@ -72,11 +76,21 @@ def _plain(value):
 
 
 class SocketStream(Server):
-    def __init__(self, poller: Poller, component: str, direction: str, host: str, port: int, hint_only: bool):
+    def __init__(self, poller: Poller, component: str, direction: str, host: str, port: int, hint_only: bool,
+                 context: RunContext | None = None):
         super().__init__(poller, host, port, attempts=100 if hint_only else 1)
         self.component = component
         self.direction = direction
         self.pending: dict | None = None  # last complete actuator message, not yet applied
+        self.context = context if direction == "IN" else None  # told of clients opening, sending, closing
+
+    def accepted(self, conn: Connection) -> None:
+        if self.context is not None:
+            self.context.stream_opened(conn)
+
+    def dropped(self, conn: Connection) -> None:
+        if self.context is not None:
+            self.context.stream_closed(conn)
 
     def received(self, conn: Connection, data: bytes) -> None:
         if self.direction == "OUT":
@@ -88,6 +102,8 @@ class SocketStream(Server):
                 conn.inbuf = b""
             return
         complete, _, conn.inbuf = conn.inbuf.rpartition(b"\n")
+        if self.context is not None:
+            self.context.stream_heard(conn)
         last = complete.rsplit(b"\n", 1)[-1]
         try:
             message = decode(last)

@@ -1,12 +1,17 @@
 """Simulated time and the two time strategies: best_effort follows the wall clock (times a scale),
-fixed_step runs as fast as the machine allows. Time advances by exactly 1/frequency per frame."""
+fixed_step runs as fast as the machine allows, except between two sleeps of a client that paces itself
+with `time sleep` (SleepHold). Time advances by exactly 1/frequency per frame."""
 
 from __future__ import annotations
 
+import logging
 import math
 import time as _time
+from typing import Any
 
 from morsec.constants import MAX_TIME_SCALE, MIN_TIME_SCALE
+
+log = logging.getLogger("morsec.time")
 
 MAX_LAG = 0.25  # wall-clock seconds behind schedule before best_effort gives up catching up
 
@@ -22,6 +27,7 @@ class Clock:
         self._wall_anchor = _time.perf_counter()
         self._sim_anchor = 0.0
         self._last_wall = self._wall_anchor
+        self._paced = False  # fixed_step following the wall clock for now
         self._n = 0
         self._mean = 0.0
         self._m2 = 0.0
@@ -45,13 +51,23 @@ class Clock:
         self._mean += delta / self._n
         self._m2 += delta * (sample - self._mean)
 
-    def delay(self) -> float:
-        """Wall-clock seconds to wait before the next frame (0 for fixed_step)."""
+    def delay(self, paced: bool = False) -> float:
+        """Wall-clock seconds to wait before the next frame: 0 for fixed_step, unless `paced` (a client is
+        between two sleeps, SleepHold): then as in best_effort, but never catching up (the loop may have
+        stood still, waiting for a client: those frames are not owed)."""
+        lag = MAX_LAG
         if self.strategy != "best_effort":
-            return 0.0
+            if not paced:
+                self._paced = False
+                return 0.0
+            if not self._paced:  # from this frame on: the next one a frame's time later
+                self._paced = True
+                self.restart()
+                self._sim_anchor -= self.dt
+            lag = 0.0
         target = self._wall_anchor + (self.elapsed - self._sim_anchor) / self.scale
         remaining = target - _time.perf_counter()
-        if remaining < -MAX_LAG:  # too slow for real time: run on, do not burst to catch up
+        if remaining < -lag:  # too slow for real time: run on, do not burst to catch up
             self.restart()
             return 0.0
         return max(0.0, remaining)
@@ -101,3 +117,154 @@ class Periodic:
             return False
         self.n = max(self.n + 1, math.floor((t + self.tolerance) / self.period) + 1)
         return True
+
+
+class SleepHold:
+    """fixed_step and the clients that pace themselves with `time sleep`: while such a client sleeps the
+    loop runs as fast as it can; once its last running sleep has ended (`arm`), and until its next sleep
+    starts (`release`), the loop runs as in best_effort (at the clock's scale), so that what the client
+    does between two sleeps takes about as much simulated time as it would in best_effort: a round trip of
+    the network, not a hundred frames. Before that, it waits, without stepping, for the client's first
+    word after the sleep (`heard`: a request on its service connection, or a message on any actuator
+    stream, whose sender cannot be told), so that a command sent right after a sleep applies at the very
+    frame the sleep ended.
+
+    Both phases are bounded in wall-clock time: the wait for the first word by `wait` (halved after each
+    wait of the same client that ran out but the first, down to `floor`: a client that reads a stream
+    after every sleep, which needs frames, does not pay it every time; whole again once it speaks first;
+    a client that reads a stream after some sleeps only keeps it whole), the whole by
+    `grace` from the end of the sleep. Then the loop runs as fast as it can again: a client that sleeps and
+    says nothing slows the others down for `grace`, no more. A client leaving (`forget`) ends it too."""
+
+    def __init__(self, wait: float, floor: float, grace: float):
+        self.wait = wait
+        self.floor = floor
+        self.grace = grace
+        self.frozen: dict[Any, float] = {}  # client -> wall-clock deadline of the wait for its first word
+        self.opened: dict[Any, float] = {}  # new actuator stream connection -> deadline of the wait for its message
+        self.opened_quiet_until = 0.0  # wall clock: no new connection is waited for before (one ran out)
+        self.awake: dict[Any, float] = {}  # client -> wall-clock deadline of its best_effort phase
+        self.misses: dict[Any, int] = {}  # client -> its waits in a row that ran out
+        self.holds = 0  # for `time statistics`: sleeps that ended so
+        self.silent = 0  # ... waits for a first word that ran out
+        self.overtime = 0  # ... best_effort phases that ran out
+
+    def arm(self, client: Any) -> None:
+        """The client's last running sleep ended."""
+        if client is None or client in self.awake:
+            return
+        now = _time.perf_counter()
+        self.frozen[client] = now + max(self.floor, self.wait / 2 ** max(0, self.misses.get(client, 0) - 1))
+        self.awake[client] = now + self.grace
+        self.holds += 1
+
+    def wake(self, client: Any, seconds: float) -> None:
+        """The client, with no sleep running, sent a command: the loop follows the wall clock until its
+        next sleep starts, for `seconds` at most (a running phase may last longer, not shorter)."""
+        if client is not None:
+            self.awake[client] = max(self.awake.get(client, 0.0), _time.perf_counter() + seconds)
+
+    def heard(self, client: Any) -> None:
+        """The client spoke (None: someone whose service connection is unknown: every client)."""
+        for spoke in (list(self.frozen) if client is None else [client]):
+            if self.frozen.pop(spoke, None) is not None:
+                self.misses.pop(spoke, None)
+
+    def stream_opened(self, connection: Any) -> None:
+        """A client connected to an actuator stream: its first message is probably on its way (pymorse
+        connects a stream when it is first used, and its message leaves a few milliseconds after the
+        request that follows it on the service connection). The loop waits for it, `wait` at most; after
+        such a wait ran out, connections opened within `grace` are not waited for (connecting again and
+        again cannot stop the loop)."""
+        now = _time.perf_counter()
+        if now >= self.opened_quiet_until:
+            self.opened[connection] = now + self.wait
+
+    def stream_heard(self, connection: Any) -> None:
+        """A message arrived on an actuator stream: whose it is cannot be told, so it is the first word of
+        every client waited for."""
+        self.opened.pop(connection, None)
+        self.heard(None)
+
+    def stream_closed(self, connection: Any) -> None:
+        self.opened.pop(connection, None)
+
+    def release(self, client: Any) -> None:
+        """The client's next sleep started."""
+        self.frozen.pop(client, None)
+        self.awake.pop(client, None)
+
+    def forget(self, client: Any) -> None:
+        """The client left."""
+        self.release(client)
+        self.misses.pop(client, None)
+
+    def holding(self) -> float:
+        """Wall-clock seconds the loop still waits (without stepping) for a client's first word or a new
+        stream's first message; 0: none."""
+        if not self.frozen and not self.opened:
+            return 0.0
+        now = _time.perf_counter()
+        for client, deadline in list(self.frozen.items()):
+            if deadline <= now:
+                del self.frozen[client]
+                self.misses[client] = min(self.misses.get(client, 0) + 1, 32)
+                self.silent += 1
+        for connection, deadline in list(self.opened.items()):
+            if deadline <= now:
+                del self.opened[connection]
+                self.opened_quiet_until = now + self.grace
+        waits = [*self.frozen.values(), *self.opened.values()]
+        return min(waits) - now if waits else 0.0
+
+    def pacing(self) -> bool:
+        """Whether some client is between two sleeps: the loop follows the wall clock."""
+        if not self.awake:
+            return False
+        now = _time.perf_counter()
+        for client, deadline in list(self.awake.items()):
+            if deadline <= now:
+                del self.awake[client]
+                self.frozen.pop(client, None)
+                self.overtime += 1
+                log.info("a client did not ask for its next sleep within %g s after its time sleep ended: "
+                         "the simulation runs as fast as it can again", self.grace)
+        return bool(self.awake)
+
+
+class Numbering:
+    """The requests numbered 0, 1, 2 ... (pymorse's ids, morsec.client's) a client sent: which arrived, and
+    when (simulated and wall-clock time) the last few did. From the first number seen on; numbers below it
+    count as arrived."""
+
+    MAX_AHEAD = 1000  # numbers arrived ahead of a missing one: beyond, the client does not number that way
+    KEPT = 16  # arrival times kept, of the highest numbers
+
+    def __init__(self, first: int):
+        self.next = first  # every number below arrived
+        self.ahead: set[int] = set()  # arrived, above a missing one
+        # number -> (simulated s, wall-clock s) it arrived at, whether it was a command (to a component)
+        self.arrivals: dict[int, tuple[float, float, bool]] = {}
+
+    def saw(self, number: int, simulated: float, wall: float, command: bool) -> bool:
+        """Record an arrival; False when the client's ids are not such a sequence after all."""
+        if number == self.next:
+            self.next += 1
+            while self.next in self.ahead:
+                self.ahead.remove(self.next)
+                self.next += 1
+        elif number > self.next:
+            self.ahead.add(number)
+        self.arrivals[number] = (simulated, wall, command)
+        if len(self.arrivals) > 2 * self.KEPT:
+            newest = sorted(self.arrivals)[-self.KEPT:]
+            self.arrivals = {n: self.arrivals[n] for n in newest}
+        return len(self.ahead) <= self.MAX_AHEAD
+
+    def all_before(self, number: int) -> bool:
+        return self.next >= number
+
+
+def request_number(request_id: str) -> int | None:
+    """A request id that is a number (pymorse counts its requests from 0), else None."""
+    return int(request_id) if request_id.isdigit() and len(request_id) <= 12 else None

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import inspect
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -38,6 +39,8 @@ class RequestManager:
         self.running: dict[str, dict[Request, None]] = {}  # component -> async requests in progress
         self.by_client: dict[Any, dict[Request, None]] = {}  # client -> its async requests in progress
         self.current: Request | None = None  # the request being dispatched (for async services)
+        self.on_request: list[Callable[[Request], None]] = []  # told of each request, before it is handled
+        self.on_leave: list[Callable[[Any], None]] = []  # told of each client that went away
 
     def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
         self.exposed[name] = Exposed(obj, dict(services))
@@ -58,6 +61,8 @@ class RequestManager:
         return request in self.running.get(request.component, ())
 
     def handle(self, request: Request) -> None:
+        for listener in self.on_request:
+            listener(request)
         exposed = self.exposed.get(request.component)
         info = exposed.services.get(request.service) if exposed else None
         if exposed is None or info is None:
@@ -69,7 +74,12 @@ class RequestManager:
         try:
             inspect.signature(method).bind(*request.args)
         except TypeError as err:
-            request.reply(request.id, FAILED, f"wrong # of parameters for {request.component}.{request.service}: {err}")
+            if not request.args:  # MORSE's words (pymorse raises MorseServiceFailed, not TypeError)
+                request.reply(request.id, FAILED, f"Socket service manager: parameters expected for service "
+                              f"{request.service}! {request.component}.{request.service}: {err}")
+            else:
+                request.reply(request.id, FAILED,
+                              f"wrong # of parameters for {request.component}.{request.service}: {err}")
             return
         request.info = info
         if info.asynchronous:
@@ -143,6 +153,8 @@ class RequestManager:
     def drop_client(self, client: Any) -> None:
         """A client went away: its pending requests can no longer be answered."""
         self._abandon(list(self.by_client.get(client, ())))
+        for listener in self.on_leave:
+            listener(client)
 
     def _abandon(self, requests: list[Request]) -> None:
         """Finish requests nobody will complete; a component that keeps requests itself (time.sleep's

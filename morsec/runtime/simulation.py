@@ -16,11 +16,12 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
+from morsec.constants import PSEUDO_COMPONENTS, SLEEP_HOLD_FLOOR, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
 from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
-from morsec.runtime.clock import Clock, Periodic
+from morsec.runtime.clock import Clock, Periodic, SleepHold
 from morsec.runtime.requests import RequestManager
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
@@ -133,11 +134,16 @@ class Simulation:
                                self.options.time_scale or float(env["time"]["scale"]), bool(env["time"]["relative"]))
         except ValueError as err:  # a build folder written by hand, or by an older morsec
             raise RuntimeFailure(f"{build_dir}: {err}") from None
+        # fixed_step: a client between two of its sleeps has the loop follow the wall clock (best_effort does)
+        self.hold = (SleepHold(SLEEP_HOLD_WAIT, SLEEP_HOLD_FLOOR, SLEEP_HOLD_GRACE)
+                     if self.clock.strategy == "fixed_step" else None)
+        self.last_stream_input = 0.0  # simulated s: when the last message to an actuator stream arrived
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
         self.requests = RequestManager()
+        self.requests.on_leave.append(self.client_left)
         self.poller = Poller()
         mujoco.mj_forward(self.model, self.data)
 
@@ -170,6 +176,8 @@ class Simulation:
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
 
         self.time_services = TimeServices(self)
+        if self.hold is not None:  # fixed_step: a client's first word after its sleep, numbered requests
+            self.requests.on_request.append(self.request_arrived)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
             self.requests.expose(name, obj, _services_of(obj))
@@ -223,7 +231,8 @@ class Simulation:
     def _open_middlewares(self, manifest: Manifest) -> None:
         opts = self.options
         context = RunContext(self.poller, self.requests, opts.bind, Path(opts.output_dir), opts.port_base,
-                             opts.service_port)
+                             opts.service_port, stream_opened=self.stream_opened, stream_heard=self.stream_heard,
+                             stream_closed=self.stream_closed)
         used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services})
         try:
             for name in used:
@@ -307,6 +316,45 @@ class Simulation:
         return {n: mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, n) for n in names}
 
     # ---------------------------------------------------------------- state changes from services
+    def sleep_ended(self, request) -> None:
+        """A client's last running `time sleep` ended: in fixed_step, until its next sleep starts, the loop
+        waits for its first word, then follows the wall clock (SleepHold); not while a lockstep client
+        paces the loop."""
+        if self.hold is not None and not (self.sync is not None and self.sync.engaged):
+            self.hold.arm(request.client)
+
+    def sleep_started(self, request) -> None:
+        if self.hold is not None:
+            self.hold.release(request.client)
+
+    def request_arrived(self, request) -> None:
+        """fixed_step: a service request arrived, before it is handled."""
+        in_order = self.time_services.heard(request)
+        if self.hold is not None:
+            if in_order:  # else a request the client numbered before it is still on its way: its first word
+                self.hold.heard(request.client)
+            if request.component not in PSEUDO_COMPONENTS and not self.time_services.sleeping.get(request.client):
+                self.hold.wake(request.client, SLEEP_HOLD_WAIT)  # a command: its sleep may follow
+
+    def stream_heard(self, connection) -> None:
+        """A message arrived on an actuator stream connection (whose client's it is cannot be told)."""
+        self.last_stream_input = self.clock.elapsed  # a sleep is never counted from before it
+        if self.hold is not None:
+            self.hold.stream_heard(connection)
+
+    def stream_opened(self, connection) -> None:
+        if self.hold is not None and not (self.sync is not None and self.sync.engaged):
+            self.hold.stream_opened(connection)
+
+    def stream_closed(self, connection) -> None:
+        if self.hold is not None:
+            self.hold.stream_closed(connection)
+
+    def client_left(self, client) -> None:
+        if self.hold is not None:
+            self.hold.forget(client)
+        self.time_services.left(client)
+
     def request_quit(self, immediate: bool = False) -> None:
         self.quitting = True
         self.immediate = immediate
@@ -373,23 +421,37 @@ class Simulation:
                     next_poll = now + POLL_PERIOD
                 if self.quitting:
                     break
-                if self.sync is not None and self.sync.engaged and not self.sync.take():
-                    self.poller.poll(0.01)
-                    self._flush()
-                    continue
+                if self.sync is not None and self.sync.engaged:
+                    if not self.sync.take():
+                        self.poller.poll(0.01)
+                        self._flush()
+                        continue
+                elif self.hold is not None and (self.hold.frozen or self.hold.opened):
+                    held = self.hold.holding()  # a client's sleep ended: its first word applies at this frame
+                    if held > 0:
+                        self.poller.poll(min(held, MAX_POLL_WAIT))
+                        self._flush()
+                        continue
                 self.step()
                 self._flush()
                 if self.view is not None:
                     self.view.sync()
-                self._wait(self.clock.delay())
+                self._wait(self._delay())
         finally:
             self.close()
+
+    def _delay(self) -> float:
+        """Wall-clock seconds before the next frame: best_effort's, or fixed_step's (none, or the wall
+        clock's pace while a client is between two sleeps; a lockstep client paces the loop itself)."""
+        paced = (self.hold is not None and bool(self.hold.awake) and not (self.sync is not None and self.sync.engaged)
+                 and self.hold.pacing())
+        return self.clock.delay(paced)
 
     def _wait(self, delay: float) -> None:
         while delay > 0 and not self.quitting:
             self.poller.poll(min(delay, MAX_POLL_WAIT))
             self._flush()
-            delay = self.clock.delay()  # asked again: a request may have changed the time scale meanwhile
+            delay = self._delay()  # asked again: a request may have changed the time scale, a client slept
 
     def step(self) -> None:
         m, d = self.model, self.data

@@ -4,15 +4,21 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import logging
 import math
+import time as _time
+from typing import Any
 
 import mujoco
 import numpy as np
 
 from morsec.component.services import async_service, service
-from morsec.constants import MAX_POSITION
+from morsec.constants import MAX_POSITION, PSEUDO_COMPONENTS, SLEEP_ORDER_WAIT, SLEEP_WITH_PREVIOUS
 from morsec.kits.bounds import bounded
 from morsec.kits.geometry import euler_to_quat, quat_to_matrix
+from morsec.runtime.clock import Numbering, request_number
+
+log = logging.getLogger("morsec.time")
 
 
 class Supervision:
@@ -125,13 +131,28 @@ def _entry(d, body: int, children: dict) -> list:
 
 class TimeServices:
     """The `time` pseudo-component. Sleeping requests wait in a heap ordered by deadline: a frame looks at
-    the first one only, a sleep costs log(n) to schedule and to wake."""
+    the first one only, a sleep costs log(n) to schedule and to wake.
+
+    fixed_step runs frames a hundred times faster than real time or more, so a client's round trip, or
+    the milliseconds between two of its requests, would be seconds of simulated time. So, in fixed_step,
+    for a client whose request ids are numbers (pymorse, morsec.client: 0, 1, 2 ...), a sleep counts from
+    the frame where the request numbered just before it arrived, if that was a command (a component's
+    service) less than SLEEP_WITH_PREVIOUS (wall clock) before, and no actuator stream message came in
+    between: `rotate(...); sleep(1)` measures one second of the rotation. If that request has
+    not arrived yet, the sleep starts when it does (within SLEEP_ORDER_WAIT): pymorse sends a component's
+    service calls from a thread pool and `sleep` from the caller's thread, and `set_speed(1, 0); sleep(2)`
+    sometimes reaches the simulation as sleep, then set_speed, tens of milliseconds later. And when a
+    client's last running sleep ends, the loop waits for it (runtime.clock.SleepHold)."""
 
     def __init__(self, sim):
         self.sim = sim
         self.sleepers: list = []  # heap of (deadline in simulated seconds, order, request)
         self.order = itertools.count()  # ties wake in the order they were asked
         self.abandoned_sleepers = 0  # entries of requests no longer running (cancelled, client gone)
+        self.sleeping: dict = {}  # client -> how many of its sleeps are running (started or not)
+        self.numbering: dict[Any, Numbering | None] = {}  # client -> its numbered requests (None: not numbered)
+        self.deferred: dict[Any, list] = {}  # client -> [(number, seconds, request, wall deadline)] not started
+        self.woke: dict[Any, float] = {}  # client -> when (simulated s) a sleep of it last ended (numbered ones)
 
     def interrupt(self) -> None:
         pass
@@ -146,7 +167,10 @@ class TimeServices:
 
     @service
     def statistics(self) -> dict:
-        return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers)}
+        hold = self.sim.hold
+        return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers),
+                "sleep_holds": hold.holds if hold else 0, "sleep_holds_silent": hold.silent if hold else 0,
+                "sleep_holds_overtime": hold.overtime if hold else 0}
 
     @service
     def set_time_scale(self, value: float) -> bool:
@@ -158,30 +182,123 @@ class TimeServices:
         delay = float(time)
         if not math.isfinite(delay):
             raise ValueError("sleep time must be a finite number of seconds")
-        deadline = self.sim.clock.elapsed + max(0.0, delay)
-        heapq.heappush(self.sleepers, (deadline, next(self.order), self.sim.requests.current))
-        self.wake()
+        request = self.sim.requests.current
+        client = request.client
+        self.sleeping[client] = self.sleeping.get(client, 0) + 1
+        number = request_number(request.id)
+        numbering = self.numbering.get(client)
+        if number is None or numbering is None:
+            self._start(request, delay)
+        elif not numbering.all_before(number):  # the request before it is still on its way: wait for it
+            self.deferred.setdefault(client, []).append(
+                (number, delay, request, _time.perf_counter() + SLEEP_ORDER_WAIT))
+        else:
+            previous = numbering.arrivals.get(number - 1)
+            if previous is None or not previous[2] or _time.perf_counter() - previous[1] > SLEEP_WITH_PREVIOUS:
+                self._start(request, delay)
+            else:  # not before its previous sleep ended, nor before a message to an actuator stream (whose?)
+                self._start(request, delay, since=max(previous[0], self.woke.get(client, previous[0]),
+                                                      self.sim.last_stream_input))
 
     sleep._morsec_concurrent = True
 
+    def _start(self, request, delay: float, since: float | None = None) -> None:
+        """The sleep counts from `since` (simulated s: when the request before it arrived), else from now."""
+        self.sim.sleep_started(request)
+        deadline = (self.sim.clock.elapsed if since is None else since) + max(0.0, delay)
+        heapq.heappush(self.sleepers, (deadline, next(self.order), request))
+        self.wake()
+
+    def heard(self, request) -> bool:
+        """fixed_step: a request arrived (before it is handled): numbered ones may let a sleep start.
+        Whether every request its client numbered before it has arrived (True when not numbered)."""
+        client, number = request.client, request_number(request.id)
+        if client is None or number is None:
+            return True
+        numbering = self.numbering.get(client, _UNSEEN)
+        if numbering is None:
+            return True
+        if numbering is _UNSEEN:
+            numbering = self.numbering[client] = Numbering(number)
+        command = request.component not in PSEUDO_COMPONENTS
+        if not numbering.saw(number, self.sim.clock.elapsed, _time.perf_counter(), command):
+            self._unnumbered(client)
+            return True
+        if client in self.deferred:
+            self._start_ready(client)
+        return numbering.all_before(number)
+
+    def _start_ready(self, client) -> None:
+        numbering = self.numbering.get(client)
+        waiting = self.deferred.pop(client)
+        ready = [entry for entry in waiting if numbering is None or numbering.all_before(entry[0])]
+        rest = [entry for entry in waiting if entry not in ready]
+        if rest:
+            self.deferred[client] = rest
+        for _, delay, request, _ in sorted(ready, key=lambda entry: entry[0]):
+            self._start(request, delay)
+
+    def _unnumbered(self, client) -> None:
+        """The client's ids are not a sequence (a gap that stays, numbers far ahead): its sleeps start
+        when they arrive from now on."""
+        self.numbering[client] = None
+        if client in self.deferred:
+            log.info("a client's sleep waited %g s for requests it numbered before it, in vain: its requests "
+                     "are taken as they arrive from now on", SLEEP_ORDER_WAIT)
+            self._start_ready(client)
+
     def wake(self) -> None:
+        if self.deferred:
+            now = _time.perf_counter()
+            for client in [c for c, waiting in self.deferred.items() if min(e[3] for e in waiting) <= now]:
+                self._unnumbered(client)
         sleepers = self.sleepers
         due = self.sim.clock.elapsed + 1e-9
         while sleepers and sleepers[0][0] <= due:
             request = heapq.heappop(sleepers)[2]
             if self.sim.requests.is_running(request):
                 self.sim.requests.complete("time", "SUCCESS", None, request)
+                if request.client in self.numbering:
+                    self.woke[request.client] = self.sim.clock.elapsed
+                if self._awake(request.client):
+                    self.sim.sleep_ended(request)  # fixed_step: the loop waits for its next sleep
             else:
                 self.abandoned_sleepers -= 1
+
+    def _awake(self, client) -> bool:
+        """One sleep of the client is over: whether it was its last one running."""
+        left = self.sleeping[client] - 1
+        if left:
+            self.sleeping[client] = left
+            return False
+        del self.sleeping[client]
+        return True
 
     def abandoned(self, requests: list) -> None:
         """Sleeping requests were cancelled or their client left: once most of the heap is such requests,
         it is rebuilt without them (memory goes with the clients, at a cost linear overall)."""
-        self.abandoned_sleepers += len(requests)
+        for request in requests:
+            self._awake(request.client)
+            waiting = self.deferred.get(request.client)
+            if waiting and any(entry[2] is request for entry in waiting):  # not started: not in the heap
+                waiting[:] = [entry for entry in waiting if entry[2] is not request]
+                if not waiting:
+                    del self.deferred[request.client]
+            else:
+                self.abandoned_sleepers += 1
         if self.abandoned_sleepers * 2 > len(self.sleepers):
             self.sleepers = [entry for entry in self.sleepers if self.sim.requests.is_running(entry[2])]
             heapq.heapify(self.sleepers)
             self.abandoned_sleepers = 0
+
+    def left(self, client) -> None:
+        """The client went away (its running sleeps were abandoned already)."""
+        self.numbering.pop(client, None)
+        self.deferred.pop(client, None)
+        self.woke.pop(client, None)
+
+
+_UNSEEN: Any = object()
 
 
 class Communication:

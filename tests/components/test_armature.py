@@ -133,11 +133,14 @@ def test_streamed_joint_targets_move_the_arm(kuka):
     np.testing.assert_allclose(state(kuka), [0.3, 0.4, 0, -0.4, 0, 0, 0], atol=0.01)
 
 
+IK_TARGET = "ik_target.robot.arm.kuka_7"
+
+
 def test_place_and_move_ik_target(kuka):
     tol = 0.005  # DistanceTolerance
-    assert kuka.call("robot.arm", "list_IK_targets") == ["kuka_7"]
+    assert kuka.call("robot.arm", "list_IK_targets") == [IK_TARGET]
     goal = np.array([0.5, 0.2, 0.6])
-    kuka.call("robot.arm", "place_IK_target", "kuka_7", list(goal), [0.0, math.pi, 0.0], False)  # pointing down
+    kuka.call("robot.arm", "place_IK_target", IK_TARGET, list(goal), [0.0, math.pi, 0.0], False)  # pointing down
     kuka.run_for(0.5)
     pos, rot = kuka.body_pose("robot.arm/kuka_7")
     assert np.linalg.norm(pos - goal) < tol
@@ -156,8 +159,21 @@ def test_place_and_move_ik_target(kuka):
     assert status == "FAILED" and "out of reach" in message
     with pytest.raises(ValueError, match="out of reach"):
         kuka.call("robot.arm", "place_IK_target", "kuka_7", [0.0, 0.0, 3.0], None, False)
-    with pytest.raises(ValueError, match="kuka_7"):
+    with pytest.raises(ValueError, match="IK target <kuka_8> does not exist for armature robot.arm .*kuka_7"):
         kuka.call("robot.arm", "place_IK_target", "kuka_8", [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="does not exist"):
+        kuka.call("robot.arm", "place_IK_target", "ik_target.robot.other.kuka_7", [0.0, 0.0, 0.0])
+
+
+def test_ik_targets_have_morse_names(kuka):
+    """MORSE names an IK target `ik_target.<armature>.<bone>` (base/armature_testing.py); its link's name
+    alone (`kuka_7`) is accepted too."""
+    assert kuka.call("robot.arm", "list_IK_targets") == ["ik_target.robot.arm.kuka_7"]
+    for name in ("ik_target.robot.arm.kuka_7", "kuka_7"):
+        kuka.call("robot.arm", "place_IK_target", name, [0.5, 0.0, 0.6], [0.0, math.pi, 0.0], False)
+        kuka.run_for(0.3)
+        pos, _ = kuka.body_pose("robot.arm/kuka_7")
+        assert np.linalg.norm(pos - [0.5, 0.0, 0.6]) < 0.005
 
 
 def test_cancel_stops_the_arm_where_it_is(kuka):

@@ -77,7 +77,8 @@ def test_attitude_angles_and_rates(circling, mode):
     _, moving, yaw = circling
     data = moving[f"heli.att_{mode}"]
     assert list(data) == ["timestamp", "rotation", "angular_velocity"]
-    roll, pitch, att_yaw = data["rotation"]
+    assert list(data["rotation"]) == ["yaw", "pitch", "roll"]  # MORSE's Euler on the wire
+    att_yaw, pitch, roll = data["rotation"].values()
     assert (roll, pitch) == pytest.approx((0.0, 0.0), abs=5e-3)  # the servos tilt it a little
     assert att_yaw == pytest.approx(yaw, abs=1e-9)
     assert data["angular_velocity"] == pytest.approx([0.0, 0.0, W], abs=0.01)
@@ -126,6 +127,6 @@ robots:
     with simulate(text, tmp_path) as h:
         h.step()
         north, scene = h.data("r.north"), h.data("r.scene")
-    assert north["rotation"][2] == pytest.approx(math.radians(-20.0), abs=1e-9)
-    assert scene["rotation"][2] == pytest.approx(math.pi / 2, abs=1e-9)
+    assert north["rotation"]["yaw"] == pytest.approx(math.radians(-20.0), abs=1e-9)
+    assert scene["rotation"]["yaw"] == pytest.approx(math.pi / 2, abs=1e-9)
     assert north["angular_velocity"] == [0.0, 0.0, 0.0]

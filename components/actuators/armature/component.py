@@ -324,14 +324,21 @@ class Armature(Actuator):
     # ------------------------------------------------------------------ services: inverse kinematics
     @service
     def list_IK_targets(self) -> list[str]:
-        """The IK targets of this armature: links whose origin `place_IK_target` / `move_IK_target` place."""
-        return sorted(self._ik_bodies)
+        """The IK targets of this armature, MORSE's names: `ik_target.<armature>.<link>` (`ik_target.robot.arm.
+        kuka_7`), the links whose origin `place_IK_target` / `move_IK_target` place."""
+        return [self._ik_name(link) for link in sorted(self._ik_bodies)]
+
+    def _ik_name(self, link: str) -> str:
+        return f"ik_target.{self.name}.{link}"
 
     def _ik_body(self, name: str) -> int:
-        if name not in self._ik_bodies:
+        """The body of an IK target named as list_IK_targets names it, or by its link alone (`kuka_7`)."""
+        prefix = self._ik_name("")
+        link = name[len(prefix):] if name.startswith(prefix) else name
+        if link not in self._ik_bodies:
             raise ValueError(f"IK target <{name}> does not exist for armature {self.name} "
-                             f"(targets: {', '.join(sorted(self._ik_bodies)) or 'none'})")
-        return self._ik_bodies[name]
+                             f"(targets: {', '.join(self.list_IK_targets()) or 'none'})")
+        return self._ik_bodies[link]
 
     def _ik_goal(self, name: str, translation, euler_rotation, relative: bool):
         body = self._ik_body(name)

@@ -27,9 +27,9 @@ class Attitude(Sensor):
             "without them the simulation does not start")
 
     data = (
-        DataField("rotation", [0.0, 0.0, 0.0], "vec3",
-                  "roll, pitch, yaw of the sensor (XYZ Euler angles, as pose), rad; yaw from north with "
-                  "UseAngleAgainstNorth"),
+        DataField("rotation", {"yaw": 0.0, "pitch": 0.0, "roll": 0.0}, "dict",
+                  "{yaw, pitch, roll} of the sensor (XYZ Euler angles, as pose), rad, as MORSE's socket encoder "
+                  "sent a Euler; yaw from north with UseAngleAgainstNorth"),
         DataField("angular_velocity", [0.0, 0.0, 0.0], "vec3", "rates about the sensor's x, y, z axes, rad/s"),
     )
 
@@ -53,7 +53,7 @@ class Attitude(Sensor):
             forward = self.geo.to_enu(rot[:, 0])
             bearing = math.atan2(forward[0], forward[1])  # clockwise from north
             yaw = normalize_angle(-bearing)
-        self.local_data["rotation"] = [float(roll), float(pitch), float(yaw)]
+        self.local_data["rotation"] = {"yaw": float(yaw), "pitch": float(pitch), "roll": float(roll)}
         self.local_data["angular_velocity"] = [float(v) for v in rates]
 
 
