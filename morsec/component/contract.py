@@ -270,7 +270,8 @@ class Robot(Component):
     Properties = RobotProperties
     xacro: ClassVar[str] = "robot.urdf.xacro"
     # height of the origin above the ground when the robot stands on it; added to `translate` z so that
-    # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's)
+    # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's), unless it floats
+    # (see spawn_offset)
     spawn_height: ClassVar[float] = 0.0
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
@@ -279,6 +280,13 @@ class Robot(Component):
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
     # that append their own actuators and sensors in __init__
     default_components: ClassVar[tuple[dict, ...]] = ()
+
+    @classmethod
+    def spawn_offset(cls, properties) -> float:
+        """What the compiler adds to `translate` z to place the origin. MORSE puts a robot's origin where the
+        script says and gravity then sets a ground robot on its wheels (there: spawn_height up); a robot that
+        floats (NoGravity) stays where it was put, so `translate(z=20)` reads z = 20 on its pose sensor."""
+        return 0.0 if getattr(properties, "NoGravity", False) else cls.spawn_height
 
 
 class Environment(Component):
