@@ -50,11 +50,7 @@ class RobotHandle:
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
-        # the base servos' last command (vx, vy, wz), its trim, how many calls it is held, when and where
-        self._command: np.ndarray | None = None
-        self._trim = np.zeros(3)
-        self._held = 0
-        self._mark: tuple[float, np.ndarray, np.ndarray] = (0.0, np.zeros(3), np.eye(3))
+        self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
 
     @property
     def free(self) -> bool:
@@ -79,11 +75,11 @@ class RobotHandle:
         if control_type == "Position":
             if self.servo:
                 d.ctrl[self.servo] = 0.0
-                self._servo_reset()
+                self._follow.pop("base servos", None)
             self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
             return
         if self.servo:
-            d.ctrl[self.servo] = self._servo_target(np.array([linear[0], linear[1], angular[2]], float))
+            d.ctrl[self.servo] = self.follow("base servos", [linear[0], linear[1], angular[2]])
             if self.free and not self.ground:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
@@ -103,36 +99,37 @@ class RobotHandle:
                 v[:3] = world
                 v[3:] = angular
 
-    # ---- the base servos' trim. A velocity servo lags its command by (resisting force) / kv: the sideways
-    # friction of skidding wheels in a turn, a slope. MORSE sets the velocity itself, so a command held
-    # unchanged is made exact by a trim added to the servos' targets, corrected at each call by what the
-    # robot missed over the last interval (its mean body velocity, from its pose then and now)
+    # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
+    # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
+    # itself (and its FixTurningSpeed was tuned so that a skid-steer robot turns at about w), so a command
+    # held unchanged is made exact by a trim added to what drives the robot, corrected at each call by what
+    # the robot missed over the last interval (its mean velocity, from its pose then and now)
     TRIM_GAIN = 0.5  # the part of the last interval's error added to the trim at each call
-    TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + TRIM_FRACTION |command| (a robot held by a wall stays gentle)
-    TRIM_FRACTION = 0.25
+    TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + fraction |command| (a robot held by a wall stays gentle)
 
-    def _servo_reset(self) -> None:
-        self._command = None
-        self._trim = np.zeros(3)
-        self._held = 0
-
-    def _servo_target(self, command: np.ndarray) -> np.ndarray:
-        """The base servos' targets for a body-frame command (vx, vy, wz): the command plus the trim."""
-        previous, mark = self._command, self._mark
+    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> np.ndarray:
+        """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
+        vertical for a ground robot): the command plus its trim. `key` names who drives (one trim each);
+        the trim along an axis is dropped when the command changes direction there, all when teleported.
+        It is corrected once the command has been held `settle` calls (what a robot still speeding up
+        misses is no slip: counted, it would wind the trim up)."""
+        command = np.asarray(command, float)
+        state = self._follow.setdefault(key, _Follow())
+        previous, mark = state.command, state.mark
         now = (self.sim.clock.elapsed, *self.pose())
-        self._command, self._mark = command, now
-        if previous is None or not np.array_equal(command, previous):
-            self._held = 0
-            if previous is not None:  # kept along an axis that goes on the same way, dropped otherwise
-                self._trim = np.where(np.sign(command) == np.sign(previous), self._trim, 0.0)
-            return command + self._trim
-        self._held += 1
+        state.command, state.mark = command, now
+        if previous is None or mark is None or not np.array_equal(command, previous):
+            state.held = 0
+            if previous is not None:
+                state.trim = np.where(np.sign(command) == np.sign(previous), state.trim, 0.0)
+            return command + state.trim
+        state.held += 1
         dt = now[0] - mark[0]
-        if self._held >= 2 and dt > 0:  # the last interval ran under this command from its start
+        if state.held >= max(settle, 2) and dt > 0:  # the last interval ran under this command throughout
             measured = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
-            limit = self.TRIM_LIMIT + self.TRIM_FRACTION * np.abs(command)
-            self._trim = np.clip(self._trim + self.TRIM_GAIN * (command - measured), -limit, limit)
-        return command + self._trim
+            limit = self.TRIM_LIMIT + fraction * np.abs(command)
+            state.trim = np.clip(state.trim + self.TRIM_GAIN * (command - measured), -limit, limit)
+        return command + state.trim
 
     def displace(self, body_translation: np.ndarray, body_rotation: np.ndarray) -> None:
         if not self.free:
@@ -144,7 +141,7 @@ class RobotHandle:
     def set_pose(self, pos, rot) -> None:
         """Put the base at a world pose and stop it."""
         place(self.sim.model, self.sim.data, self.body_id, pos, rot)
-        self._servo_reset()
+        self._follow.clear()  # the velocity it had is gone
 
     def place_frame(self, frame_body: int, pos, rot) -> None:
         """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""
@@ -208,6 +205,16 @@ class RobotHandle:
         self._wrenches[key] = np.concatenate([bounded(force, MAX_FORCE, "a force (N)"),
                                               bounded(torque, MAX_FORCE, "a torque (N m)")])
         self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
+
+
+class _Follow:
+    """A command followed: the last one (vx, vy, wz), its trim, how many calls it is held, when and where."""
+
+    def __init__(self):
+        self.command: np.ndarray | None = None
+        self.trim = np.zeros(3)
+        self.held = 0
+        self.mark: tuple[float, np.ndarray, np.ndarray] | None = None
 
 
 def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> np.ndarray:

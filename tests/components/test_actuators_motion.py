@@ -76,3 +76,30 @@ def test_motion_vw_against_a_wall_pushes_within_bounds(tmp_path):
         assert h.body_pose("robot")[0][0] < 0.5  # the wall holds it
         moved, _ = drive(h, 1.0, v=-1.0, w=0.0)
     assert moved[0] == pytest.approx(-1.0, abs=0.05)
+
+
+@pytest.mark.parametrize("robot", ["segwayrmp400", "pioneer3dx"])
+def test_motion_vw_diff_turns_steadily_at_w(robot, tmp_path):
+    """Wheels slip (a skid-steer Segway's in stick-slip: its turn rate swung from 0.72 w to 1.1 w): the
+    wheels are asked what the robot missed, so it turns at w, half a second after half a second."""
+    text = f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: robot
+    type: {robot}
+    components:
+      - {{name: motion, type: motion_vw_diff}}
+"""
+    v, w = 1.0, -math.pi / 4
+    with simulate(text, tmp_path) as h:
+        h.run_for(0.3)
+        h.command("robot.motion", v=v, w=w)
+        h.run_for(0.5)
+        yaws = [h.yaw("robot")]
+        for _ in range(4 * 60):
+            h.step()
+            yaws.append(h.yaw("robot"))
+    turned = np.unwrap(yaws)
+    rates = np.diff(turned[::30]) * 2  # over each half second
+    assert (turned[-1] - turned[0]) / 4 == pytest.approx(w, rel=0.03)
+    assert rates == pytest.approx([w] * len(rates), rel=0.12)
