@@ -269,9 +269,8 @@ class Robot(Component):
     kind = "robot"
     Properties = RobotProperties
     xacro: ClassVar[str] = "robot.urdf.xacro"
-    # height of the origin above the ground when the robot stands on it; added to `translate` z so that
-    # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's), unless it floats
-    # (see spawn_offset)
+    # height of the origin above the ground when the robot stands on it: a robot placed lower stands on the
+    # ground, its origin this high (an ATRV's origin is 0.10 m up, as MORSE's); see origin_z
     spawn_height: ClassVar[float] = 0.0
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
@@ -282,11 +281,14 @@ class Robot(Component):
     default_components: ClassVar[tuple[dict, ...]] = ()
 
     @classmethod
-    def spawn_offset(cls, properties) -> float:
-        """What the compiler adds to `translate` z to place the origin. MORSE puts a robot's origin where the
-        script says and gravity then sets a ground robot on its wheels (there: spawn_height up); a robot that
-        floats (NoGravity) stays where it was put, so `translate(z=20)` reads z = 20 on its pose sensor."""
-        return 0.0 if getattr(properties, "NoGravity", False) else cls.spawn_height
+    def origin_z(cls, z: float, properties) -> float:
+        """Where the compiler puts the origin of a robot that `translate` puts at height z. MORSE puts the
+        origin there, then physics acts: a robot that floats (NoGravity) stays there (`RMax().translate(z=20)`
+        reads z = 20 on its pose sensor); one that gravity holds falls from there, or, put lower than it
+        stands, is pushed up by the ground till it stands on it (a Segway at z = 0.1 rests at once at 0.20)."""
+        if getattr(properties, "NoGravity", False):
+            return z
+        return max(z, cls.spawn_height)
 
 
 class Environment(Component):
