@@ -67,7 +67,8 @@ class RobotHandle:
 
     def apply_speed(self, control_type: str, linear, angular, frequency: float) -> None:
         """MORSE's robot.apply_speed. 'Velocity': body-frame velocity, held by the base servos inside the
-        physics steps (ground robots keep vertical velocity, roll and pitch from physics). 'Position':
+        physics steps (ground robots keep vertical velocity, roll and pitch from physics; a new command is set
+        on their body at once, as MORSE's, the servos then hold it, trimmed: see follow). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
         d = self.sim.data
         linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
@@ -80,6 +81,14 @@ class RobotHandle:
             return
         if self.servo:
             d.ctrl[self.servo] = self.follow("base servos", [linear[0], linear[1], angular[2]])
+            if self.free and self.ground and self._follow["base servos"].held == 0:
+                # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
+                # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
+                _, rot = self.pose()
+                v = self._base_qvel()
+                world = rot @ np.array([linear[0], linear[1], 0.0])
+                v[0], v[1] = world[0], world[1]
+                v[5] = angular[2]
             if self.free and not self.ground:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
