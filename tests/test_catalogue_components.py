@@ -128,11 +128,13 @@ def test_robot_left_alone_stays_put(robot_id, build_yaml):
         assert all(model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0
                    for g in range(model.ngeom) if model.geom_bodyid[g] in bodies)
     start = data.xpos[body].copy()
-    assert start[2] == pytest.approx(start_z + cls.spawn_height)
+    # translate z is the origin (MORSE's placement), a robot on the ground stands on it (spawn_height up)
+    assert cls.origin_z(start_z, cls.Properties()) == (start_z if floats else cls.spawn_height)
+    assert start[2] == pytest.approx(start_z if floats else cls.spawn_height)
     colliding = [g for g in range(model.ngeom) if model.geom_bodyid[g] in bodies
                  and (model.geom_contype[g] or model.geom_conaffinity[g])]
-    if colliding:  # spawn_height right: translate z puts the lowest colliding part there (on the ground at 0)
-        assert lowest_point(model, data, colliding) == pytest.approx(start_z, abs=1e-6)
+    if colliding:  # spawn_height right: it is how far the origin is above the lowest colliding part
+        assert lowest_point(model, data, colliding) == pytest.approx(start[2] - cls.spawn_height, abs=1e-6)
 
     run(model, data, SETTLE_S)
     moved = data.xpos[body] - start

@@ -197,7 +197,8 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     for link in tree.walk():
         if link.joint and link.joint["name"] in armature:
             link.joint["armature"] = float(armature[link.joint["name"]])
-    tree.pos = np.asarray(robot.translate, dtype=float) + [0.0, 0.0, cls.spawn_height]
+    x, y, z = (float(v) for v in robot.translate)
+    tree.pos = np.array([x, y, cls.origin_z(z, robot.properties)])
     tree.quat = euler_to_quat(*robot.rotate)
     components = [_component(c, robot.name, cat, env) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,

@@ -269,8 +269,8 @@ class Robot(Component):
     kind = "robot"
     Properties = RobotProperties
     xacro: ClassVar[str] = "robot.urdf.xacro"
-    # height of the origin above the ground when the robot stands on it; added to `translate` z so that
-    # z = 0 means "standing on the ground" (an ATRV's origin is 0.10 m up, as MORSE's)
+    # height of the origin above the ground when the robot stands on it: a robot placed lower stands on the
+    # ground, its origin this high (an ATRV's origin is 0.10 m up, as MORSE's); see origin_z
     spawn_height: ClassVar[float] = 0.0
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
@@ -279,6 +279,16 @@ class Robot(Component):
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
     # that append their own actuators and sensors in __init__
     default_components: ClassVar[tuple[dict, ...]] = ()
+
+    @classmethod
+    def origin_z(cls, z: float, properties) -> float:
+        """Where the compiler puts the origin of a robot that `translate` puts at height z. MORSE puts the
+        origin there, then physics acts: a robot that floats (NoGravity) stays there (`RMax().translate(z=20)`
+        reads z = 20 on its pose sensor); one that gravity holds falls from there, or, put lower than it
+        stands, is pushed up by the ground till it stands on it (a Segway at z = 0.1 rests at once at 0.20)."""
+        if getattr(properties, "NoGravity", False):
+            return z
+        return max(z, cls.spawn_height)
 
 
 class Environment(Component):

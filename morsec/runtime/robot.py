@@ -50,6 +50,7 @@ class RobotHandle:
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
+        self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
 
     @property
     def free(self) -> bool:
@@ -66,7 +67,8 @@ class RobotHandle:
 
     def apply_speed(self, control_type: str, linear, angular, frequency: float) -> None:
         """MORSE's robot.apply_speed. 'Velocity': body-frame velocity, held by the base servos inside the
-        physics steps (ground robots keep vertical velocity, roll and pitch from physics). 'Position':
+        physics steps (ground robots keep vertical velocity, roll and pitch from physics; a new command is set
+        on their body at once, as MORSE's, the servos then hold it, trimmed: see follow). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
         d = self.sim.data
         linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
@@ -74,12 +76,19 @@ class RobotHandle:
         if control_type == "Position":
             if self.servo:
                 d.ctrl[self.servo] = 0.0
+                self._follow.pop("base servos", None)
             self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
             return
         if self.servo:
-            d.ctrl[self.servo[0]] = linear[0]
-            d.ctrl[self.servo[1]] = linear[1]
-            d.ctrl[self.servo[2]] = angular[2]
+            d.ctrl[self.servo] = self.follow("base servos", [linear[0], linear[1], angular[2]])
+            if self.free and self.ground and self._follow["base servos"].held == 0:
+                # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
+                # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
+                _, rot = self.pose()
+                v = self._base_qvel()
+                world = rot @ np.array([linear[0], linear[1], 0.0])
+                v[0], v[1] = world[0], world[1]
+                v[5] = angular[2]
             if self.free and not self.ground:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
@@ -99,6 +108,38 @@ class RobotHandle:
                 v[:3] = world
                 v[3:] = angular
 
+    # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
+    # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
+    # itself (and its FixTurningSpeed was tuned so that a skid-steer robot turns at about w), so a command
+    # held unchanged is made exact by a trim added to what drives the robot, corrected at each call by what
+    # the robot missed over the last interval (its mean velocity, from its pose then and now)
+    TRIM_GAIN = 0.5  # the part of the last interval's error added to the trim at each call
+    TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + fraction |command| (a robot held by a wall stays gentle)
+
+    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> np.ndarray:
+        """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
+        vertical for a ground robot): the command plus its trim. `key` names who drives (one trim each);
+        the trim along an axis is dropped when the command changes direction there, all when teleported.
+        It is corrected once the command has been held `settle` calls (what a robot still speeding up
+        misses is no slip: counted, it would wind the trim up)."""
+        command = np.asarray(command, float)
+        state = self._follow.setdefault(key, _Follow())
+        previous, mark = state.command, state.mark
+        now = (self.sim.clock.elapsed, *self.pose())
+        state.command, state.mark = command, now
+        if previous is None or mark is None or not np.array_equal(command, previous):
+            state.held = 0
+            if previous is not None:
+                state.trim = np.where(np.sign(command) == np.sign(previous), state.trim, 0.0)
+            return command + state.trim
+        state.held += 1
+        dt = now[0] - mark[0]
+        if state.held >= max(settle, 2) and dt > 0:  # the last interval ran under this command throughout
+            measured = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
+            limit = self.TRIM_LIMIT + fraction * np.abs(command)
+            state.trim = np.clip(state.trim + self.TRIM_GAIN * (command - measured), -limit, limit)
+        return command + state.trim
+
     def displace(self, body_translation: np.ndarray, body_rotation: np.ndarray) -> None:
         if not self.free:
             return
@@ -109,6 +150,7 @@ class RobotHandle:
     def set_pose(self, pos, rot) -> None:
         """Put the base at a world pose and stop it."""
         place(self.sim.model, self.sim.data, self.body_id, pos, rot)
+        self._follow.clear()  # the velocity it had is gone
 
     def place_frame(self, frame_body: int, pos, rot) -> None:
         """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""
@@ -172,6 +214,29 @@ class RobotHandle:
         self._wrenches[key] = np.concatenate([bounded(force, MAX_FORCE, "a force (N)"),
                                               bounded(torque, MAX_FORCE, "a torque (N m)")])
         self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
+
+
+class _Follow:
+    """A command followed: the last one (vx, vy, wz), its trim, how many calls it is held, when and where."""
+
+    def __init__(self):
+        self.command: np.ndarray | None = None
+        self.trim = np.zeros(3)
+        self.held = 0
+        self.mark: tuple[float, np.ndarray, np.ndarray] | None = None
+
+
+def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> np.ndarray:
+    """(vx, vy, wz) of a body over an interval, from its poses at both ends: velocity in its own frame, turn
+    rate about its own z axis, or with `heading` about the world's vertical (a ground robot's heading)."""
+    delta = rot1 @ rot0.T if heading else rot0.T @ rot1
+    vee = np.array([delta[2, 1] - delta[1, 2], delta[0, 2] - delta[2, 0], delta[1, 0] - delta[0, 1]]) / 2
+    sin = float(np.linalg.norm(vee))
+    angle = float(np.arctan2(sin, (np.trace(delta) - 1.0) / 2.0))
+    rotvec = vee * (angle / sin) if sin > 1e-12 else vee
+    moved = pos1 - pos0
+    linear = (rot0.T @ moved + rot1.T @ moved) / 2.0  # in the frame half-way through
+    return np.array([linear[0], linear[1], rotvec[2]]) / dt
 
 
 def _descends(m, body: int, ancestor: int) -> bool:

@@ -111,4 +111,4 @@ def test_submarine_moves_with_force_torque(tmp_path):
         sim.command("r.thrust", force=[470.0, 0.0, 0.0])
         sim.run_for(1.0)
         pos, _ = sim.body_pose("r")
-        assert pos == pytest.approx([0.5, 0.0, 2.25], abs=0.01)
+        assert pos == pytest.approx([0.5, 0.0, 2.0], abs=0.01)  # it floats where it was put, as MORSE's

@@ -2,6 +2,8 @@ import mujoco
 
 from morsec.component import Actuator, ComponentProperties, DataField, service
 
+SLIP_FRACTION = 0.5  # the most the wheels are asked beyond the command, as a part of it (plus 0.05)
+
 
 class MotionVWDiff(Actuator):
     """Linear and angular velocity (v, w) turned into wheel speeds of a differential-drive robot
@@ -9,7 +11,8 @@ class MotionVWDiff(Actuator):
     (v - e w) / R and the right wheels at (v + e w) / R, e half the distance between the wheels
     (or half the robot's `FixTurningSpeed` when not 0), R the wheel radius. The wheels are driven by
     MuJoCo velocity servos inside the physics sub-steps: the robot moves through wheel-ground friction,
-    as a real one (slip included).
+    as a real one; a (v, w) held unchanged is corrected at each tick by what the wheels' slip made the
+    robot miss, so that it goes at v and turns at w (as MORSE's, whose FixTurningSpeed was tuned so).
 
     The robot class declares `wheel_radius`, `wheel_track` (m), `left_wheel_joints` and
     `right_wheel_joints` (URDF joint names), and optionally `wheel_kv` (servo gain, N m s/rad) and
@@ -42,6 +45,10 @@ class MotionVWDiff(Actuator):
 
     def default_action(self):
         v, w = float(self.local_data["v"]), float(self.local_data["w"])
+        # the wheels slip (skid-steering most): what the robot missed of a held (v, w) over the last tick
+        # is added to what the wheels are asked, within half the command (MORSE's FixTurningSpeed, tuned on
+        # Bullet, made its robots turn at about w; this makes them turn at w)
+        v, _, w = self.robot.follow(self.name, [v, 0.0, w], fraction=SLIP_FRACTION, settle=10)
         fix = float(getattr(self.robot.properties, "FixTurningSpeed", 0.0) or 0.0)
         ctrl = self.sim.data.ctrl
         for i, side, radius, half_track in self._wheels:

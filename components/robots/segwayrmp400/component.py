@@ -8,13 +8,13 @@ from morsec.component import Robot, WheeledRobotProperties
 class SegwayRMP400(Robot):
     """Segway RMP 400: a 4-wheel skid-steer outdoor platform, 1.09 x 0.76 m, 118 kg, four 0.533 m wheels
     (track 0.62 m, wheelbase 0.556 m), the two wheels of each side driven at the same speed by
-    `motion_vw_diff` (MORSE's PhysicsDifferentialRobot). Its origin is at the centre of the axles, one
-    wheel radius (0.2667 m) above the ground."""
+    `motion_vw_diff` (MORSE's PhysicsDifferentialRobot). Its origin is between the wheels, 0.20 m above
+    the ground as MORSE's (0.0667 m below the axles)."""
 
     short_descr = "4-wheel skid-steer platform driven through its wheels"
     builder_name = "SegwayRMP400"
     xacro = "robot.urdf.xacro"
-    spawn_height = 0.2667
+    spawn_height = 0.20
 
     # what motion_vw_diff reads (MORSE's PhysicsDifferentialRobot): URDF joint names of the driven
     # wheels of each side, wheel radius and distance between the left and right wheel centres
