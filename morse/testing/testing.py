@@ -22,7 +22,7 @@ Each test runs on a simulation of its own, as in MORSE: `setUp` records the case
 build folder (once per case and process: morsec's builder front end, in this process), starts
 `morsec run BUILD --time-strategy S` as a child process and waits for SCENE INITIALIZED; `tearDown` stops it
 (SIGINT, SIGKILL after a timeout). The simulation's output goes to `<logs>/<TestCase>.log`, where `<logs>` is
-`$MORSE_TEST_LOGS`, else `<temp dir>/morse-testing/<test file name>` (printed when a simulation fails).
+`$MORSE_TEST_LOGS`, else `<temp dir>/morse-testing/<test file name>-<pid>` (printed when a simulation fails).
 
 `main(*cases, time_modes=[...])` runs every test of the cases once per time strategy (BestEffort, then
 FixedSimulationStep, by default) and exits with unittest's status. Run by pytest instead, a test uses the time
@@ -83,12 +83,13 @@ def human_repr(mode) -> str:
 
 def logs_folder(case: type) -> Path:
     """Where the logs and build folders of a test case go: $MORSE_TEST_LOGS, else a folder in the temp dir
-    named after the test file (never next to the test file)."""
+    named after the test file and this process (never next to the test file; two runs of the same file at
+    once do not share their builds)."""
     explicit = os.environ.get("MORSE_TEST_LOGS")
     if explicit:
         return Path(explicit)
     source = inspect.getsourcefile(case) or getattr(sys.modules.get(case.__module__), "__file__", None) or "tests"
-    return Path(tempfile.gettempdir()) / "morse-testing" / Path(source).stem
+    return Path(tempfile.gettempdir()) / "morse-testing" / f"{Path(source).stem}-{os.getpid()}"
 
 
 class MorseTestRunner(unittest.TextTestRunner):
