@@ -126,6 +126,9 @@ class Simulation:
             raise RuntimeFailure(f"{build_dir}: not a usable build folder: {err}") from None
         self.data = mujoco.MjData(self.model)
         self.manifest = manifest
+        self.streams_of: dict[str, list] = {}  # component -> its stream entries, in the manifest's order
+        for stream in manifest.streams:
+            self.streams_of.setdefault(stream.component, []).append(stream)
         self.scene = manifest.scene
         env = self.scene["environment"]
         self.substeps = manifest.loop.physics_substeps
@@ -205,7 +208,7 @@ class Simulation:
         body = mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, entry.fqn)
         if body < 0:
             raise RuntimeFailure(f"scene.xml has no body for component {entry.fqn}: rebuild the scene")
-        streams = [s for s in self.manifest.streams if s.component == entry.fqn]
+        streams = self.streams_of.get(entry.fqn, [])
         configuration = {"level": entry.level, "frequency": entry.frequency, "services": entry.services,
                          "streams": [{"middleware": s.middleware, "direction": s.direction, **s.endpoint}
                                      for s in streams],
