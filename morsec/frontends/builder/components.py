@@ -177,6 +177,10 @@ class AbstractComponent:
     def _default_label(self) -> str:
         return self._emit_type() or type(self).__name__.lower()
 
+    def _morse_default_name(self) -> str:
+        """The name MORSE gives an object no variable names: its .blend object's (the builder class name)."""
+        return type(self).__name__
+
     def _fqn(self) -> str:
         parts = []
         node: AbstractComponent | None = self
