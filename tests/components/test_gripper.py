@@ -77,7 +77,7 @@ def test_only_graspable_objects_in_the_cone_and_in_range_are_grabbed(tmp_path):
         assert sim.call("robot.gripper", "grab") is None
         assert sim.data("robot.gripper")["grab"] is False
     (tmp_path / "wide").mkdir()
-    with simulate(scene(objects, "{Angle: 2.0}"), tmp_path / "wide") as sim:  # a 115 degree cone sees it
+    with simulate(scene(objects, "{Angle: 115.0}"), tmp_path / "wide") as sim:  # a 115 degree cone sees it
         assert sim.call("robot.gripper", "grab") == "aside"
     (tmp_path / "range").mkdir()
     with simulate(scene(box("low", 0.0), height=0.7), tmp_path / "range") as sim:  # top 0.6 m below
@@ -125,4 +125,4 @@ def test_a_weld_per_dynamic_graspable_object_off_until_grab(tmp_path):
         welds = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_EQUALITY, i) for i in range(model.neq)]
         assert welds == ["robot.gripper/a", "robot.gripper/b"]
         assert not model.eq_active0.any() and not sim.sim.data.eq_active.any()
-        assert math.isclose(sim.component("robot.gripper").properties.Angle, math.radians(60))
+        assert sim.component("robot.gripper").properties.Angle == 60.0  # degrees, as MORSE
