@@ -3,8 +3,6 @@ object follows it while held and falls where it is released."""
 
 from __future__ import annotations
 
-import math
-
 import mujoco
 import numpy as np
 import pytest
