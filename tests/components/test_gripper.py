@@ -66,6 +66,24 @@ def test_pick_move_release_the_box_falls_where_released(tmp_path):
         np.testing.assert_allclose(sim.body_pose("other")[0][:2], [0.4, 0.0], atol=1e-3)  # left alone
 
 
+def test_a_held_object_goes_along_when_the_robot_is_teleported(tmp_path):
+    """MORSE's gripper_testing teleports the robot holding a tape: the object, parented to the gripper in MORSE,
+    goes along; here it is put back in the hand (the weld alone would pull it across 5 m in one step)."""
+    with simulate(scene(box("box", 0.0)), tmp_path) as sim:
+        sim.run_for(0.3)
+        gripper = sim.component("robot.gripper")
+        assert sim.call("robot.gripper", "grab") == "box"
+        offset = sim.body_pose("box")[0] - gripper.position()
+        robot = sim.sim.robots[0].handle
+        pos, rot = robot.pose()
+        robot.set_pose(pos + np.array([3.0, -4.0, 0.2]), rot)  # a jump of 5 m
+        sim.run_for(0.5)
+        np.testing.assert_allclose(sim.body_pose("box")[0] - gripper.position(), offset, atol=0.005)
+        assert sim.call("robot.gripper", "release") is True
+        sim.run_for(1.0)
+        np.testing.assert_allclose(sim.body_pose("box")[0], [3.0, -4.0, BOX / 2], atol=0.01)  # fell below
+
+
 def test_only_graspable_objects_in_the_cone_and_in_range_are_grabbed(tmp_path):
     objects = (box("plain", 0.0, graspable=False)  # right below, but not Graspable
                + box("aside", 0.0, 0.3)  # 0.32 m away, but 50 degrees off the gripper's axis (cone: 30)

@@ -21,6 +21,7 @@ from morsec.component import Actuator, ComponentProperties, DataField, service
 from morsec.kits.geometry import matrix_to_quat
 
 log = logging.getLogger("morsec.actuators.gripper")
+JUMP = 0.05  # m: a held object this far from where the hand holds it is put back there
 
 
 class Gripper(Actuator):
@@ -112,10 +113,15 @@ class Gripper(Actuator):
             self._grab()
         elif not want and self.held is not None:
             self._release()
-        if self.held is not None and self.held[2] < 0:  # a static object: carried kinematically
-            _, body, _, rel_pos, rel_rot = self.held
+        if self.held is not None:
+            _, body, weld, rel_pos, rel_rot = self.held
             rot = self.rotation()
-            self.sim.place_body(body, self.position() + rot @ rel_pos, rot @ rel_rot)
+            pos = self.position() + rot @ rel_pos
+            # a static object is carried kinematically; a welded one is put back in the hand when the gripper
+            # jumped (its robot teleported: MORSE's object, parented to the gripper, went along), where the
+            # weld alone would pull it across the gap at once
+            if weld < 0 or float(np.linalg.norm(self.sim.data.xpos[body] - pos)) > JUMP:
+                self.sim.place_body(body, pos, rot @ rel_rot)
 
     # ------------------------------------------------------------------ services
     @service
