@@ -346,7 +346,8 @@ def _device_tree(path: Path, mtime_ns: int) -> Link:
 def _mounts(scene, cat: Catalogue) -> dict[str, str]:
     """{child component body: body to nest it in} for the children of components whose class sets
     `mount_body` (a body of its own model, named relative to the component: "tilt" -> `<fqn>/tilt`): a
-    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link."""
+    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link; and for the
+    components a robot class mounts on another one's body (`component_mounts`)."""
     devices = cat.devices()
     out: dict[str, str] = {}
     for _, comp, fqn, _, _ in walk_components(scene):
@@ -354,6 +355,12 @@ def _mounts(scene, cat: Catalogue) -> dict[str, str]:
         if mount:
             for child in comp.components:
                 out[join(fqn, child.name)] = part(fqn, mount)
+    # a robot's component riding on another component's body (the PR2's head and arms on its torso lift)
+    for robot in scene.robots:
+        names = {c.name for c in robot.components}
+        for name, (host, body) in cat.get("robots", robot.type).component_mounts.items():
+            if name in names and host in names:
+                out[join(robot.name, name)] = part(join(robot.name, host), body)
     return out
 
 
