@@ -200,7 +200,8 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     x, y, z = (float(v) for v in robot.translate)
     tree.pos = np.array([x, y, cls.origin_z(z, robot.properties)])
     tree.quat = euler_to_quat(*robot.rotate)
-    components = [_component(c, robot.name, cat, env) for c in robot.components]
+    floats = bool(robot.properties.NoGravity)  # its arms float with it
+    components = [_component(c, robot.name, cat, env, floats) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
 
@@ -290,7 +291,7 @@ def _prepare_links(tree: Link, robot) -> None:
                 g.rgba = list((g.rgba or [0.5, 0.5, 0.5, 1.0])[:3]) + [robot.ghost]
 
 
-def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
+def _component(comp, parent_fqn: str, cat: Catalogue, env, gravcomp: bool = False) -> dict:
     cls = cat.devices()[comp.type]
     fqn = join(parent_fqn, comp.name)
     template = component_template(cat, cls, "model.xml.j2")
@@ -302,9 +303,9 @@ def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
     return {
         "fqn": fqn, "pos": comp.translate, "quat": euler_to_quat(*comp.rotate), "fragment": fragment,
         # an arm's links (device_links), rendered with the robots' link macro: no free joint, no contacts
-        "arm": RobotBody(name=fqn, type=cls.id, root=arm, components=[], free=False, gravcomp=False,
+        "arm": RobotBody(name=fqn, type=cls.id, root=arm, components=[], free=False, gravcomp=gravcomp,
                          friction=None, collides=False) if arm is not None else None,
-        "children": [_component(child, fqn, cat, env) for child in comp.components],
+        "children": [_component(child, fqn, cat, env, gravcomp) for child in comp.components],
     }
 
 
