@@ -335,7 +335,7 @@ def test_builder_attribute_resolves_and_names_what_is_missing():
     with pytest.raises(UnknownBuilderName, match=r"no sensor 'Posee' .*did you mean 'Pose'\?"):
         builder_attribute("morse.builder.sensors", "Posee")
     with pytest.raises(ImportError):  # `try: from morse.builder.robots import X / except ImportError:` works
-        builder_attribute(robots, "BasePR2")
+        builder_attribute(robots, "NoSuchRobot")
     with pytest.raises(AttributeError):  # not a class name: the import system's probes, submodules
         builder_attribute(robots, "morserobots")
 

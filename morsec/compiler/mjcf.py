@@ -200,7 +200,8 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     x, y, z = (float(v) for v in robot.translate)
     tree.pos = np.array([x, y, cls.origin_z(z, robot.properties)])
     tree.quat = euler_to_quat(*robot.rotate)
-    components = [_component(c, robot.name, cat, env) for c in robot.components]
+    floats = bool(robot.properties.NoGravity)  # its arms float with it
+    components = [_component(c, robot.name, cat, env, floats) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
 
@@ -290,7 +291,7 @@ def _prepare_links(tree: Link, robot) -> None:
                 g.rgba = list((g.rgba or [0.5, 0.5, 0.5, 1.0])[:3]) + [robot.ghost]
 
 
-def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
+def _component(comp, parent_fqn: str, cat: Catalogue, env, gravcomp: bool = False) -> dict:
     cls = cat.devices()[comp.type]
     fqn = join(parent_fqn, comp.name)
     template = component_template(cat, cls, "model.xml.j2")
@@ -302,9 +303,9 @@ def _component(comp, parent_fqn: str, cat: Catalogue, env) -> dict:
     return {
         "fqn": fqn, "pos": comp.translate, "quat": euler_to_quat(*comp.rotate), "fragment": fragment,
         # an arm's links (device_links), rendered with the robots' link macro: no free joint, no contacts
-        "arm": RobotBody(name=fqn, type=cls.id, root=arm, components=[], free=False, gravcomp=False,
+        "arm": RobotBody(name=fqn, type=cls.id, root=arm, components=[], free=False, gravcomp=gravcomp,
                          friction=None, collides=False) if arm is not None else None,
-        "children": [_component(child, fqn, cat, env) for child in comp.components],
+        "children": [_component(child, fqn, cat, env, gravcomp) for child in comp.components],
     }
 
 
@@ -346,7 +347,8 @@ def _device_tree(path: Path, mtime_ns: int) -> Link:
 def _mounts(scene, cat: Catalogue) -> dict[str, str]:
     """{child component body: body to nest it in} for the children of components whose class sets
     `mount_body` (a body of its own model, named relative to the component: "tilt" -> `<fqn>/tilt`): a
-    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link."""
+    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link; and for the
+    components a robot class mounts on another one's body (`component_mounts`)."""
     devices = cat.devices()
     out: dict[str, str] = {}
     for _, comp, fqn, _, _ in walk_components(scene):
@@ -354,6 +356,12 @@ def _mounts(scene, cat: Catalogue) -> dict[str, str]:
         if mount:
             for child in comp.components:
                 out[join(fqn, child.name)] = part(fqn, mount)
+    # a robot's component riding on another component's body (the PR2's head and arms on its torso lift)
+    for robot in scene.robots:
+        names = {c.name for c in robot.components}
+        for name, (host, body) in cat.get("robots", robot.type).component_mounts.items():
+            if name in names and host in names:
+                out[join(robot.name, name)] = part(join(robot.name, host), body)
     return out
 
 

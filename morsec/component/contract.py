@@ -279,6 +279,13 @@ class Robot(Component):
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
     # that append their own actuators and sensors in __init__
     default_components: ClassVar[tuple[dict, ...]] = ()
+    # a default component that rides on a body of another one's model rather than on the robot's base:
+    # {component: (component, body)}, e.g. the PR2's {"head": ("torso", "torso_lift_link")}; the first keeps
+    # its name (robot.head) and its `translate` is then relative to that body
+    component_mounts: ClassVar[dict[str, tuple[str, str]]] = {}
+    # what the builder's robot.add_interface(middleware) does (MORSE builder robots that define it, BasePR2):
+    # {"streams": (component, ...), "services": (component, ...)}, components named relative to the robot
+    builder_interface: ClassVar[dict[str, tuple[str, ...]]] = {}
 
     @classmethod
     def origin_z(cls, z: float, properties) -> float:

@@ -59,7 +59,9 @@ class JointServos:
         """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given)."""
         d = self.sim.data
         self.setpoint = bounded(setpoint, MAX_POSITION, "a joint setpoint (rad or m)").copy()
-        ff = d.qfrc_bias[self.dof].copy()
+        # gravity and Coriolis forces, less what MuJoCo's gravity compensation already cancels (the arm of
+        # a floating robot)
+        ff = d.qfrc_bias[self.dof] - d.qfrc_gravcomp[self.dof]
         if velocity is not None:
             ff += self.kv * bounded(velocity, MAX_SPEED, "a joint speed (rad/s or m/s)")
         d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)

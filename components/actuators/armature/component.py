@@ -13,8 +13,8 @@ stream sends in (joints it leaves out keep their targets). A movement is over wh
 Inverse kinematics uses MuJoCo's own Jacobians (`morsec.kits.ik`): damped least squares on `mj_jac` of the
 IK target's body (a link whose origin is the end effector), on a scratch MjData, joint limits clamped at
 each step.
-Subclasses (KukaLWR) set `xacro`, `mount_body` (where appended components go), `ik_targets` and
-`joint_armature`.
+Subclasses (KukaLWR, the PR2's armatures) set `xacro`, `mount_body` (where appended components go),
+`ik_targets`, `joint_armature` and `joint_suffix`.
 """
 
 from __future__ import annotations
@@ -56,6 +56,8 @@ class Armature(Actuator):
                                                   "extension": 0.2}
     # links whose origin inverse kinematics can place (MORSE's IK targets)
     ik_targets: ClassVar[tuple[str, ...]] = ("extension",)
+    # a suffix services may leave out of a joint's name (the PR2's "_joint": `head_pan` for `head_pan_joint`)
+    joint_suffix: ClassVar[str] = ""
 
     class Properties(ComponentProperties):
         DistanceTolerance: float = Field(0.005, gt=0, description="tolerance when translating a joint or "
@@ -102,6 +104,8 @@ class Armature(Actuator):
         return self.servos.names
 
     def _index(self, joint: str) -> int:
+        if joint not in self.servos.index and self.joint_suffix and f"{joint}{self.joint_suffix}" in self.servos.index:
+            joint = f"{joint}{self.joint_suffix}"
         if joint not in self.servos.index:
             raise ValueError(f"joint <{joint}> does not exist in armature {self.name} "
                              f"(joints: {', '.join(self.names)})")
@@ -222,7 +226,7 @@ class Armature(Actuator):
         targets = self._read_targets().copy()
         for joint, value in joints.items():
             targets[indices[joint]] = float(value)
-            self.joint_speed[joint] = abs(float(speed)) if speed else None
+            self.joint_speed[self.names[indices[joint]]] = abs(float(speed)) if speed else None
         self._set_targets(targets)
 
     @async_service(interruptible=True)
