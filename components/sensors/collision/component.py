@@ -8,7 +8,11 @@ class Collision(Sensor):
     """Whether the sensor's robot touches something, and what: MuJoCo's contacts between any geometry of
     the robot and anything else. The ground plane(s) of the environment are not counted (a ground robot
     always stands on them); other environment geometry (walls, crates) is named after its geom. With
-    `only_objects_with_property` only robots and objects carrying that property count."""
+    `only_objects_with_property` only robots and objects carrying that property count.
+
+    As MORSE's (whose Collision ran only while its Blender collision sensor fired), its streams say
+    something only while the robot touches something that counts: a client waiting for a message gets
+    none before the first contact. `get_local_data` always answers, `collision: false` when free."""
 
     short_descr = "Contacts of the robot with other objects"
     builder_name = "Collision"
@@ -55,6 +59,9 @@ class Collision(Sensor):
                     names.add(name)
         self.local_data["collision"] = bool(names)
         self.local_data["objects"] = ",".join(sorted(names))
+
+    def serialize(self) -> dict | None:
+        return self.local_data if self.local_data["collision"] else None
 
     def _name(self, geom: int, root: int, wanted: str) -> str | None:
         obj = self.scene_objects.get(root)
