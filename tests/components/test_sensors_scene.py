@@ -140,6 +140,26 @@ objects:
         assert len(messages) >= 3 and all(m["collision"] and m["objects"] == "crate" for m in messages)
 
 
+def test_collision_box_ahead_of_the_robot_touches_first(tmp_path):
+    """MORSE's collision sensor is a small box of its own: mounted 0.7 m ahead of an ATRV (as MORSE's
+    collision_testing mounts it), it reports the robot standing before it while the robot's own body is
+    still 6 cm away; a sensor at the robot's origin reports nothing."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: atrv
+    components:
+      - {name: ahead, type: collision, translate: [0.7, 0.0, 0.2]}
+      - {name: inside, type: collision}
+  - {name: dala, type: atrv, translate: [1.1, 0.0, 0.0]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step(3)
+        assert h.data("r.ahead")["objects"] == "dala"
+        assert h.data("r.inside")["collision"] is False
+
+
 def test_compound_merges_sensors_by_full_name(tmp_path):
     text = """
 environment: {name: empty, time: {strategy: fixed_step, relative: true}}
