@@ -101,6 +101,10 @@ class Device(Component):
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None
+    # True: the children's translate / rotate are in this component's own frame with its joints at zero (not
+    # in the mount body's), and they keep that place on the mount body: MORSE's armatures, whose children
+    # are placed in the arm's frame and ride on its end
+    mount_in_own_frame: ClassVar[bool] = False
     # the modifiers (`alter(name)`) that apply to this component: {name: Modifier class}, names from
     # morsec.modifiers.registry, e.g. {"noise": PoseNoise, "ned": ToNED}. A subclass (a preset, a level)
     # inherits them, as any class attribute; to add some: {**Base.modifiers, "feet": ToFeet}

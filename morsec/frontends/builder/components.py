@@ -935,6 +935,20 @@ class Plane(Mesh):
     _type = "Plane"
 
 
+class EnvironmentObject(_Object):
+    """An object of the environment's own (indoors-1/boxes' RedBox) that the script reached with
+    `bpymorse.get_object(name)`: the environment's definition, written in the scene under its name (which
+    replaces the environment's), so what the script sets on it (`bpymorse.properties(box, Type='Box')`)
+    applies to it."""
+
+    def __init__(self, definition: dict):
+        self._start(register=True)
+        definition = copy.deepcopy(definition)
+        self._type_name = definition.pop("type")
+        self.name = definition.pop("name")
+        self._raw.update(definition)
+
+
 class CatalogueProp(_Object):
     """A catalogue prop by its builder name (generated per catalogue)."""
 
