@@ -24,3 +24,16 @@ def test_the_page_gives_the_rate_and_each_failure_with_its_reason(tmp_path):
     assert "| `base/vw_testing.py` | 2 | 2 | AssertionError: -0.19 != 0.0 within 0.1 delta |" in page
     assert "| `robots/segway/spiral.py` | 0 | 2 | calls `Morse.stream`" in page  # the exception
     assert "- `base/pose_testing.py` (6)" in page
+
+
+def test_the_check_names_a_file_recorded_as_passing_that_fails_or_is_missing():
+    page = ("## Files with failures\n\n| `base/vw_testing.py` | 2 | 2 | x |\n\n"
+            "## Files that pass\n\n- `base/pose_testing.py` (6)\n- `base/sick_testing.py` (2)\n"
+            "- `base/gps_testing.py` (2)\n\n## Not measured by the suite\n\n- `base/video_camera_testing.py` x\n")
+    output = ("base/pose_testing.py                           6   0  \n"
+              "base/sick_testing.py                           1   1  FAIL: test_sick\n"
+              "base/vw_testing.py                             2   2  FAIL: test_vw_controller\n"
+              "9 passed, 3 failed\n")
+    assert tool.recorded_passing(page) == ["base/pose_testing.py", "base/sick_testing.py", "base/gps_testing.py"]
+    # sick fails, gps gave no result; vw was already failing and the video camera is not a result
+    assert tool.regressions(output, page) == ["base/sick_testing.py", "base/gps_testing.py"]

@@ -215,11 +215,11 @@ def test_morse_builder_imports_in_plain_python(tmp_path):
         assert TimeStrategies.BestEffort != TimeStrategies.FixedSimulationStep
         assert math.pi > 3  # MORSE's star import handed over `math`; MORSE's test files use it unimported
         try:
-            from morse.builder.robots import BasePR2  # not in the catalogue: an ImportError, not a module
+            from morse.builder.robots import NoSuchRobot  # not in the catalogue: an ImportError, not a module
         except ImportError as err:
-            assert "BasePR2" in str(err)
+            assert "NoSuchRobot" in str(err)
         else:
-            raise AssertionError(BasePR2)
+            raise AssertionError(NoSuchRobot)
         from morse.testing.testing import MorseTestCase, main, testlogger, MorseMoveTestCase
         import unittest
         assert issubclass(MorseTestCase, unittest.TestCase)

@@ -101,6 +101,10 @@ class Device(Component):
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None
+    # True: the children's translate / rotate are in this component's own frame with its joints at zero (not
+    # in the mount body's), and they keep that place on the mount body: MORSE's armatures, whose children
+    # are placed in the arm's frame and ride on its end
+    mount_in_own_frame: ClassVar[bool] = False
     # the modifiers (`alter(name)`) that apply to this component: {name: Modifier class}, names from
     # morsec.modifiers.registry, e.g. {"noise": PoseNoise, "ned": ToNED}. A subclass (a preset, a level)
     # inherits them, as any class attribute; to add some: {**Base.modifiers, "feet": ToFeet}
@@ -279,6 +283,13 @@ class Robot(Component):
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
     # that append their own actuators and sensors in __init__
     default_components: ClassVar[tuple[dict, ...]] = ()
+    # a default component that rides on a body of another one's model rather than on the robot's base:
+    # {component: (component, body)}, e.g. the PR2's {"head": ("torso", "torso_lift_link")}; the first keeps
+    # its name (robot.head) and its `translate` is then relative to that body
+    component_mounts: ClassVar[dict[str, tuple[str, str]]] = {}
+    # what the builder's robot.add_interface(middleware) does (MORSE builder robots that define it, BasePR2):
+    # {"streams": (component, ...), "services": (component, ...)}, components named relative to the robot
+    builder_interface: ClassVar[dict[str, tuple[str, ...]]] = {}
 
     @classmethod
     def origin_z(cls, z: float, properties) -> float:

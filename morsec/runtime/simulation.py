@@ -145,6 +145,7 @@ class Simulation:
         self.quitting = False
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
+        self.pinned: dict[int, tuple] = {}  # bodies held where an actuator put them, for this frame's physics
         self.requests = RequestManager()
         self.requests.on_leave.append(self.client_left)
         self.poller = Poller()
@@ -381,6 +382,14 @@ class Simulation:
         if body in self.frozen:
             self.set_frozen(body, True)  # frozen where it was put
 
+    def pin(self, body: int) -> None:
+        """Hold a body where it is through this frame's physics (a teleport: MORSE's sensors read the pose
+        the teleport set, before physics moved it)."""
+        joint = free_joint(self.model, body)
+        if joint is not None:
+            adr, dof = joint
+            self.pinned[body] = (adr, dof, self.data.qpos[adr:adr + 7].copy())
+
     def set_frozen(self, body: int, frozen: bool) -> None:
         joint = free_joint(self.model, body)
         if joint is None:
@@ -469,9 +478,10 @@ class Simulation:
         else:
             d.qvel[:] = 0.0
             mujoco.mj_forward(m, d)
-        for adr, dof, qpos in self.frozen.values():
+        for adr, dof, qpos in (*self.frozen.values(), *self.pinned.values()):
             d.qpos[adr:adr + 7] = qpos
             d.qvel[dof:dof + 6] = 0.0
+        self.pinned.clear()
         self.clock.tick()
         t = self.clock.elapsed
         due = [c for c in self.sensors if c.active and c.schedule.due(t)]

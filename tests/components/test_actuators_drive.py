@@ -195,6 +195,21 @@ def test_force_torque_in_the_actuator_frame_adds_the_lever_arm(tmp_path):
         assert moved[1] == pytest.approx(0.5 * 100.0 / SUB_MASS, rel=0.02) and abs(moved[0]) < 1e-3
 
 
+def test_force_torque_at_the_origin_does_not_turn_the_robot(tmp_path):
+    """MORSE measures the lever arm from the robot's origin (Blender's centre of mass of the body): a
+    ForceTorque at an ATRV's origin, whose centre of mass is 0.2 m above it, pushes it without pitching
+    it (MORSE's drag and external_force tests: an ATRV held at z = 1 speeds up along x only)."""
+    comps = ["{name: ft, type: force_torque}"]
+    with simulate(scene("atrv", comps, z=1.0, properties="properties: {NoGravity: true}"), tmp_path) as sim:
+        _, start_rot = sim.body_pose("r")
+        sim.command("r.ft", force=[100.0, 0.0, 0.0])
+        sim.run_for(1.0)
+        _, rot = sim.body_pose("r")
+        linear, angular = sim.sim.robots[0].handle.velocity()
+        assert np.allclose(rot, start_rot, atol=1e-6) and np.allclose(angular, 0.0, atol=1e-6)
+        assert linear[0] > 1.0 and abs(linear[2]) < 1e-6
+
+
 def test_external_force_is_in_the_world_frame_and_adds_up(tmp_path):
     comps = ["{name: wind, type: external_force}",
              "{name: ft, type: force_torque, properties: {RobotFrame: true}}"]

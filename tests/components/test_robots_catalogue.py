@@ -1,4 +1,4 @@
-"""The robots segwayrmp400, b21, morsy, hummer, quadrotor and submarine: each is in the catalogue under its
+"""The robots segwayrmp400, b21, morsy, hummer, quadrotor, quad2012, submarine and jido: each is in the catalogue under its
 MORSE name, floats (NoGravity) or not by default, has the mass its README gives, and moves as the actuator
 MORSE pairs it with commands. (The checks run over every robot of the catalogue — README, valid URDF and
 check_urdf, standing on the ground at translate z = 0 or floating, and staying there — are in
@@ -10,6 +10,7 @@ import math
 
 import mujoco
 import pytest
+from runtime_helpers import Morsec
 
 from morsec.testing import simulate
 
@@ -21,6 +22,8 @@ ROBOTS = {
     "hummer": ("Hummer", 2440.0, False),
     "quadrotor": ("Quadrotor", 1.0, False),
     "submarine": ("Submarine", 470.0, True),
+    "quad2012": ("QUAD2012", 1.0, True),
+    "jido": ("Jido", 150.0, False),
 }
 MAX_TILT = math.radians(3.0)
 
@@ -112,3 +115,30 @@ def test_submarine_moves_with_force_torque(tmp_path):
         sim.run_for(1.0)
         pos, _ = sim.body_pose("r")
         assert pos == pytest.approx([0.5, 0.0, 2.0], abs=0.01)  # it floats where it was put, as MORSE's
+
+
+def test_quad2012_flies_with_stabilized_quadrotor(tmp_path):
+    """MORSE's QUAD2012 + StabilizedQuadrotor: from the ground to h_c = 10 m in 3 s, then theta_c = 0.1
+    accelerates it along x (MORSE's linear model: 0.39 m in the first second) with no roll at all."""
+    comps = ("      - {name: pose, type: pose}\n"
+             "      - {name: motion, type: stabilized_quadrotor}\n")
+    with simulate(scene("QUAD2012", components=comps), tmp_path) as sim:
+        assert sim.body_pose("r")[0][2] == pytest.approx(0.0, abs=1e-6)  # floating where it is put
+        sim.command("r.motion", theta_c=0.0, phi_c=0.0, psi_c=0.0, h_c=10.0)
+        sim.run_for(3.0)
+        assert sim.body_pose("r")[0] == pytest.approx([0.0, 0.0, 10.0], abs=0.05)
+        sim.command("r.motion", theta_c=0.1, phi_c=0.0, psi_c=0.0, h_c=10.0)
+        sim.run_for(1.0)
+        pose = sim.data("r.pose")
+        assert pose["x"] == pytest.approx(0.39, abs=0.02) and pose["y"] == pytest.approx(0.0, abs=1e-6)
+        assert pose["roll"] == 0.0 and pose["pitch"] == pytest.approx(0.1, abs=0.02)
+
+
+def test_jido_is_listed_by_list_robots(tmp_path):
+    """MORSE's base_testing: Jido() and ATRVs named four ways, listed over the socket."""
+    script = tmp_path / "robots.py"
+    script.write_text("from morse.builder import *\n\njido = Jido()\nrobot2 = ATRV('mana')\n"
+                      "env = Environment('empty', fastmode=True)\n")
+    with Morsec(script, tmp_path, prebuild=False, strategy="fixed_step") as sim:
+        status, robots = sim.client().call("simulation", "list_robots")
+        assert status == "SUCCESS" and sorted(robots) == ["jido", "mana"]

@@ -39,6 +39,33 @@ robots:
     assert baro2["pressure"] == pytest.approx(90000.0 / 101325.0 * expected, rel=1e-9)
 
 
+def test_barometer_on_a_teleported_robot_reads_the_height_it_was_put_at(tmp_path):
+    """MORSE's barometer_testing: a Morsy (gravity, contacts) teleported to 1000 m reads 89871.0 +- 0.1 Pa.
+    The teleport holds the robot through the frame's physics (MORSE's sensors read the pose before
+    Blender's physics step): gravity does not pull it 2 mm down before the sensor reads it."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: morsy
+    components:
+      - {name: baro, type: barometer}
+      - {name: tp, type: teleport}
+"""
+    exponent = 9.81 * 0.0289644 / (8.31447 * 0.0065)
+    with simulate(text, tmp_path) as h:
+        h.step()
+        start = h.body_pose("r")[0][2]
+        for height in (100.0, 1000.0):
+            h.command("r.tp", x=0.0, y=0.0, z=height)
+            for _ in range(3):
+                h.step()
+                assert h.body_pose("r")[0][2] == pytest.approx(height, abs=1e-9)
+                expected = 101325.0 * (1 - 0.0065 * (height - start) / 288.15) ** exponent
+                assert h.data("r.baro")["pressure"] == pytest.approx(expected, rel=1e-10)
+        assert h.data("r.baro")["pressure"] == pytest.approx(89871.0, abs=0.1)
+
+
 def test_magnetometer_reads_the_world_magnetic_model(tmp_path):
     from pygeomag import GeoMag
 
@@ -92,6 +119,30 @@ robots:
         for (lon, lat, alt), field in expected.items():
             h.command("r.tp", x=float(lon), y=float(lat), z=float(alt), roll=0.0, pitch=0.0, yaw=0.0)
             h.step(2)
+            mag = h.data("r.mag")
+            assert (mag["x"], mag["y"], mag["z"]) == pytest.approx(field, abs=0.1), (lon, lat, alt)
+
+
+def test_magnetometer_on_a_robot_teleported_below_the_ground(tmp_path):
+    """The same figures on a Morsy (physics, contacts) as MORSE's test has it: the geodetic points lie
+    thousands of km below the scene's ground plane, which does not push a robot the teleport holds."""
+    text = """
+environment:
+  name: empty
+  time: {strategy: fixed_step, relative: true}
+  properties: {longitude: 43.6, latitude: 1.4333, altitude: 135.0}
+robots:
+  - name: r
+    type: morsy
+    components:
+      - {name: mag, type: magnetometer, properties: {date: 2015.0}}
+      - {name: tp, type: teleport, modifiers: [{name: geodetic}]}
+"""
+    expected = {(0, 80, 0): (6627.1, -445.9, 54432.3), (120, 0, 0): (39518.2, 392.9, -11252.4)}
+    with simulate(text, tmp_path) as h:
+        for (lon, lat, alt), field in expected.items():
+            h.command("r.tp", x=float(lon), y=float(lat), z=float(alt), roll=0.0, pitch=0.0, yaw=0.0)
+            h.step(6)
             mag = h.data("r.mag")
             assert (mag["x"], mag["y"], mag["z"]) == pytest.approx(field, abs=0.1), (lon, lat, alt)
 

@@ -7,6 +7,7 @@ import json
 import math
 
 import pytest
+from runtime_helpers import read_lines, stream_client
 
 from morsec.errors import RuntimeFailure
 from morsec.middleware.socket_streams import encode
@@ -105,6 +106,58 @@ objects:
         assert fire_only == {"timestamp": pytest.approx(h.time), "collision": False, "objects": ""}
         assert h.data("r.bumper")["collision"] is True
         assert 0.8 < h.time - 0.5 < 1.5
+
+
+def test_collision_stream_is_silent_until_a_contact(tmp_path):
+    """As MORSE's, the collision stream sends nothing while the robot touches nothing (a client waiting
+    for a message times out), then a message per tick while it touches: MORSE's collision_testing waits
+    0.1 s for a message and expects none before the robot reaches the obstacle."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: atrv
+    components:
+      - {name: bumper, type: collision, streams: [socket]}
+      - {name: motion, type: motion_vw}
+objects:
+  - {name: crate, type: box, translate: [1.5, 0.0, 0.5], size: [1.0, 2.0, 1.0]}
+"""
+    with simulate(text, tmp_path) as h:
+        client = stream_client(h, "r.bumper")
+        h.run_for(0.5)
+        assert h.data("r.bumper")["collision"] is False  # computed, not sent
+        client.settimeout(0.2)
+        with pytest.raises(TimeoutError):
+            client.recv(1 << 16)
+        h.command("r.motion", v=0.5, w=0.0)
+        for _ in range(60):
+            h.step(6)
+            if h.data("r.bumper")["collision"]:
+                break
+        h.step(3)
+        messages = [json.loads(line) for line in read_lines(client)]
+        assert len(messages) >= 3 and all(m["collision"] and m["objects"] == "crate" for m in messages)
+
+
+def test_collision_box_ahead_of_the_robot_touches_first(tmp_path):
+    """MORSE's collision sensor is a small box of its own: mounted 0.7 m ahead of an ATRV (as MORSE's
+    collision_testing mounts it), it reports the robot standing before it while the robot's own body is
+    still 6 cm away; a sensor at the robot's origin reports nothing."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: atrv
+    components:
+      - {name: ahead, type: collision, translate: [0.7, 0.0, 0.2]}
+      - {name: inside, type: collision}
+  - {name: dala, type: atrv, translate: [1.1, 0.0, 0.0]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step(3)
+        assert h.data("r.ahead")["objects"] == "dala"
+        assert h.data("r.inside")["collision"] is False
 
 
 def test_compound_merges_sensors_by_full_name(tmp_path):

@@ -7,8 +7,10 @@ from morsec.component import Actuator, ComponentProperties, DataField
 class ForceTorque(Actuator):
     """A force and a torque applied to the robot's body, re-applied until the next command, as MORSE's
     ForceTorque. With `RobotFrame` false (default), both are given in the actuator's frame and the force
-    acts at the actuator's position (its lever arm about the robot's centre of mass adds a torque); with
-    `RobotFrame` true, both are given in the robot's frame and act at its centre of mass.
+    acts at the actuator's position (its lever arm adds a torque); with
+    `RobotFrame` true, both are given in the robot's frame and act at its centre of mass. As MORSE's, the
+    lever arm (the torque a force off-centre adds) is measured from the robot's origin, which in Blender
+    was its centre of mass: an actuator at the origin pushes the robot without turning it.
 
     The wrench is MuJoCo's `xfrc_applied` on the robot's base body: it stays applied over the physics
     sub-steps, and adds up with the other force actuators of the robot (external_force, drag, ...)."""
@@ -33,11 +35,16 @@ class ForceTorque(Actuator):
         base = self.robot.body_id
         if self.properties.RobotFrame:
             rot = d.xmat[base].reshape(3, 3)
-            self.robot.apply_wrench(self.name, rot @ force, rot @ torque)
+            f_world = rot @ force
+            lever = d.subtree_com[base] - d.xipos[base]
+            self.robot.apply_wrench(self.name, f_world, rot @ torque + np.cross(lever, f_world))
             return
         rot = self.rotation()
         f_world = rot @ force
-        lever = self.position() - d.xipos[base]
+        # MORSE's lever arm: from the robot's origin (in Blender the centre of mass of the robot's body) to
+        # the actuator; a ForceTorque at the origin pushes without turning the robot
+        # the force acts at the whole robot's centre of mass (MuJoCo applies it at the base body's own)
+        lever = self.position() - d.xpos[base] + d.subtree_com[base] - d.xipos[base]
         self.robot.apply_wrench(self.name, f_world, rot @ torque + np.cross(lever, f_world))
 
 

@@ -7,7 +7,9 @@ from morsec.modifiers.coordinates import POSITION_IN
 
 class Teleport(Actuator):
     """Moves the robot so that this actuator's frame is at the commanded world pose, every tick
-    (dynamics of the robot are suspended: its velocity is zeroed)."""
+    (dynamics of the robot are suspended: its velocity is zeroed, and the physics step of the frame does
+    not move it, so that its sensors read the pose it was put at, as MORSE's read it before Blender's
+    physics step: gravity does not pull it down, the ground does not push a robot put below it)."""
 
     short_descr = "Place the robot at a pose"
     builder_name = "Teleport"
@@ -35,6 +37,7 @@ class Teleport(Actuator):
         target_rot = quat_to_matrix(euler_to_quat(float(d["roll"]), float(d["pitch"]), float(d["yaw"])))
         target_pos = np.array([float(d["x"]), float(d["y"]), float(d["z"])])
         self.robot.place_frame(self.body_id, target_pos, target_rot)
+        self.sim.pin(self.robot.body_id)  # physics does not move it before the sensors read it
 
     @service
     def translate(self, x: float, y: float = 0.0, z: float = 0.0):

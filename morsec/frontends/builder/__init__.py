@@ -91,6 +91,7 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
 
 def _robot_init(self, name=None, debug=True):
     Robot.__init__(self, "", name)
+    self._add_default_components()
 
 
 def _device_init(base):

@@ -697,6 +697,58 @@ class Robot(AbstractComponent):
         if name:
             self.name = name
 
+    # ---- the catalogue robot's own components (MORSE builder robots that append theirs in __init__)
+
+    def _add_default_components(self) -> None:
+        """The robot type's `default_components` (BasePR2's torso, head ...) as children, each an attribute of
+        the robot by its name (nested ones `<parent>_<name>`: MORSE's `pr2.torso_pose`)."""
+        cls = self._catalogue_class(self._type_name)
+        for spec in getattr(cls, "default_components", ()) if cls else ():
+            self._default_child(self, spec, "")
+
+    def _default_child(self, parent: AbstractComponent, spec: dict, prefix: str) -> None:
+        child = Sensor(spec["type"])  # a catalogue sensor or actuator by id
+        child.name = spec["name"]
+        if spec.get("translate"):
+            child.translate(*spec["translate"])
+        if spec.get("rotate"):
+            child.rotate(*spec["rotate"])
+        if spec.get("properties"):
+            child.properties(**spec["properties"])
+        for middleware in spec.get("streams", ()):
+            child.add_stream(middleware)
+        for middleware in spec.get("services", ()):
+            child.add_service(middleware)
+        parent.append(child)
+        attribute = f"{prefix}{spec['name']}"
+        if not hasattr(type(self), attribute):
+            setattr(self, attribute, child)
+        for sub in spec.get("components", ()):
+            self._default_child(child, sub, f"{attribute}_")
+
+    def _builder_interface(self) -> dict:
+        cls = self._catalogue_class(self._type_name)
+        return getattr(cls, "builder_interface", {}) if cls else {}
+
+    def add_interface(self, interface, **kwargs):
+        """On a robot type that defines it (BasePR2): streams and services of its own components, as MORSE's
+        builder class did; on others, an error (interfaces are set on sensors and actuators)."""
+        table = self._builder_interface()
+        if not table:
+            return super().add_interface(interface, **kwargs)
+        children = {c.basename: c for c in self._children}
+        for key, method in (("streams", "add_stream"), ("services", "add_service")):
+            for name in table.get(key, ()):
+                if name in children:
+                    getattr(children[name], method)(interface, **(kwargs if key == "streams" else {}))
+
+    def add_stream(self, datastream, method=None, path=None, classpath=None, direction=None, **kwargs):
+        """On a robot type with its own interface (BasePR2): as add_interface (MORSE's did nothing; old
+        PR2 scripts stream it this way)."""
+        if self._builder_interface() and method is None and path is None and classpath is None:
+            return self.add_interface(datastream, **kwargs)
+        return super().add_stream(datastream, method, path, classpath, direction, **kwargs)
+
     def add_default_interface(self, stream):
         """Stream + service `stream` on every component of the robot that has none."""
         middleware, _ = self._middleware_of(stream, "add_default_interface")
@@ -885,6 +937,20 @@ class Torus(Mesh):
 
 class Plane(Mesh):
     _type = "Plane"
+
+
+class EnvironmentObject(_Object):
+    """An object of the environment's own (indoors-1/boxes' RedBox) that the script reached with
+    `bpymorse.get_object(name)`: the environment's definition, written in the scene under its name (which
+    replaces the environment's), so what the script sets on it (`bpymorse.properties(box, Type='Box')`)
+    applies to it."""
+
+    def __init__(self, definition: dict):
+        self._start(register=True)
+        definition = copy.deepcopy(definition)
+        self._type_name = definition.pop("type")
+        self.name = definition.pop("name")
+        self._raw.update(definition)
 
 
 class CatalogueProp(_Object):
