@@ -318,6 +318,10 @@ class Prop(Component):
 
     kind = "prop"
     template: ClassVar[str] = "model.xml.j2"
+    # the prop's own values of the fields an `objects:` entry leaves out (size, color, dynamic, mass,
+    # properties), e.g. a MORSE .blend object's: {"size": [0.04, 0.12, 0.2], "dynamic": True}; properties
+    # the entry gives are added to the prop's
+    defaults: ClassVar[dict] = {}
 
 
 KINDS: dict[str, type[Component]] = {

@@ -18,7 +18,7 @@ from pydantic_core import ErrorDetails
 from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
-from morsec.scene.resolve import add_environment_objects, add_robot_defaults, resolve
+from morsec.scene.resolve import add_environment_objects, add_prop_defaults, add_robot_defaults, resolve
 from morsec.scene.schema import scene_model
 from morsec.scene.sourcemap import SourceMap
 
@@ -31,6 +31,7 @@ def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
     model = scene_model(cat)
     add_robot_defaults(data, cat)
     data = add_environment_objects(data, cat)
+    data = add_prop_defaults(data, cat)
     try:
         scene = model.model_validate(data)
     except ValidationError as err:

@@ -132,6 +132,33 @@ robots:
     assert north["angular_velocity"] == [0.0, 0.0, 0.0]
 
 
+def test_airspeed_reads_the_dynamic_pressure_along_its_axis(tmp_path):
+    """MORSE's airspeed: 0.5 rho v^2 (rho = 1.225) with v along the sensor's x axis; turned pi/2, it measures
+    the robot's sideways speed, the same both ways; Velocity (physics) and Position (displacement) agree."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: robot
+    type: morsy
+    components:
+      - {name: motion, type: motion_xyw}
+      - {name: side, type: airspeed, rotate: [0.0, 0.0, 1.5707963267948966], properties: {ComputationMode: Velocity}}
+      - {name: side_pos, type: airspeed, rotate: [0.0, 0.0, 1.5707963267948966],
+         properties: {ComputationMode: Position}}
+      - {name: ahead, type: airspeed}
+"""
+    with simulate(text, tmp_path) as h:
+        h.run_for(0.2)
+        assert list(h.data("robot.side")) == ["timestamp", "diff_pressure"]
+        assert h.data("robot.side")["diff_pressure"] == pytest.approx(0.0, abs=1e-3)
+        for vx, vy in ((1.0, 0.0), (0.0, 2.0), (0.0, -2.0)):
+            h.command("robot.motion", x=vx, y=vy, w=0.0)
+            h.run_for(0.5)
+            for name in ("robot.side", "robot.side_pos"):
+                assert h.data(name)["diff_pressure"] == pytest.approx(0.5 * 1.225 * vy * vy, abs=0.02), (name, vx, vy)
+            assert h.data("robot.ahead")["diff_pressure"] == pytest.approx(0.5 * 1.225 * vx * vx, abs=0.02)
+
+
 @pytest.mark.parametrize("angles", [(0.0, 2.5, 0.0), (0.0, -2.9, 0.0), (3.0, 0.0, 0.0), (0.0, 0.0, -3.0),
                                     (0.4, 1.9, -0.3)])
 def test_euler_angles_are_chosen_as_blender_chose_them(angles, tmp_path):
