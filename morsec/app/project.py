@@ -1,12 +1,16 @@
-"""From what the user names (a scene file or a build folder) to a build folder: load, compile, write."""
+"""From what the user names (a scene file or a build folder) to a build folder: load, compile, write.
+The front ends and the compiler are imported only when something is to be built: running a build folder
+does not load them."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from morsec.compiler.build import MANIFEST, compile_scene, write_build
-from morsec.component.catalogue import Catalogue, load_catalogue
-from morsec.frontends.load import load_scene
+from morsec.scene.manifest import MANIFEST
+
+if TYPE_CHECKING:
+    from morsec.component.catalogue import Catalogue
 
 
 def default_build_dir(source: Path) -> Path:
@@ -15,6 +19,9 @@ def default_build_dir(source: Path) -> Path:
 
 def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
     """Compile a scene file into `out_dir` (replaced only once the new build is complete)."""
+    from morsec.compiler.build import compile_scene, write_build
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     source = Path(source)
     cat = catalogue or load_catalogue(source.parent)
     write_build(compile_scene(load_scene(source, cat), cat), Path(out_dir))
@@ -23,6 +30,9 @@ def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None)
 
 def check_scene(source: Path, strict: bool = False) -> None:
     """Everything `build` checks, nothing written; `strict`: a builder script's warnings are errors."""
+    from morsec.compiler.build import compile_scene
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     cat = load_catalogue(Path(source).parent)
     compile_scene(load_scene(source, cat, strict), cat)
 
@@ -32,6 +42,9 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     source = Path(source)
     if source.is_dir() and (source / MANIFEST).is_file():
         return source
+    from morsec.compiler.build import compile_scene, write_build
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     cat = load_catalogue(source.parent)
     files = compile_scene(load_scene(source, cat), cat)
     out_dir = Path(out) if out else default_build_dir(source)
