@@ -67,7 +67,7 @@ def read_urdf(text: str, source: str) -> Link:
     A small reader of the elements morsec uses (links, joints, materials, inertials, visuals, collisions),
     on the standard library's XML parser: it reads each value as yourdfpy does (the same defaults, the same
     origin matrices), so that the compiled scene is the same, and a build needs neither yourdfpy nor the
-    trimesh, scipy and networkx it imports (tests/test_catalogue_components.py checks both readers agree on
+    trimesh, scipy and networkx it imports (tests/test_urdf_reader.py checks both readers agree on
     every catalogue robot)."""
     try:
         robot = _robot(ElementTree.fromstring(text))
