@@ -1,13 +1,14 @@
 """From what the user names (a scene file or a build folder) to a build folder: load, compile, write.
-The front ends and the compiler are imported only when something is to be built: running a build folder
-does not load them."""
+The front ends and the compiler are imported only when something is to be built: running a build folder,
+or building a scene whose build is up to date (morsec.app.buildcache), does not load them."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from morsec.scene.manifest import MANIFEST
+from morsec.app import buildcache
+from morsec.app.buildcache import MANIFEST
 
 if TYPE_CHECKING:
     from morsec.component.catalogue import Catalogue
@@ -18,13 +19,18 @@ def default_build_dir(source: Path) -> Path:
 
 
 def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
-    """Compile a scene file into `out_dir` (replaced only once the new build is complete)."""
+    """Compile a scene file into `out_dir` (replaced only once the new build is complete); nothing is done
+    when `out_dir` is an up-to-date build of it."""
+    source = Path(source)
+    key = buildcache.inputs_key(source) if catalogue is None else None
+    if buildcache.up_to_date(out_dir, key):
+        return Path(out_dir)
     from morsec.compiler.build import compile_scene, write_build
     from morsec.component.catalogue import load_catalogue
     from morsec.frontends.load import load_scene
-    source = Path(source)
     cat = catalogue or load_catalogue(source.parent)
     write_build(compile_scene(load_scene(source, cat), cat), Path(out_dir))
+    buildcache.record(out_dir, key)
     return Path(out_dir)
 
 
@@ -42,14 +48,18 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     source = Path(source)
     if source.is_dir() and (source / MANIFEST).is_file():
         return source
+    out_dir = Path(out) if out else default_build_dir(source)
+    key = buildcache.inputs_key(source)
+    if buildcache.up_to_date(out_dir, key):
+        return out_dir
     from morsec.compiler.build import compile_scene, write_build
     from morsec.component.catalogue import load_catalogue
     from morsec.frontends.load import load_scene
     cat = load_catalogue(source.parent)
     files = compile_scene(load_scene(source, cat), cat)
-    out_dir = Path(out) if out else default_build_dir(source)
     if not _same(out_dir, files):
         write_build(files, out_dir)
+    buildcache.record(out_dir, key)
     return out_dir
 
 
