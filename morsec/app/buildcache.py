@@ -11,6 +11,7 @@ anything. Without a writable cache folder every build compiles."""
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -62,16 +63,23 @@ def up_to_date(out_dir: Path, key: str | None) -> bool:
     try:
         stamp = json.loads(stamp_path(out_dir).read_text(encoding="utf-8"))
         manifest = (out_dir / MANIFEST).read_bytes()
-        if stamp.get("inputs") != key or stamp.get("manifest") != _sha256(manifest) \
+        if stamp.get("inputs") != key or stamp.get("manifest") != sha256(manifest) \
                 or stamp.get("folder") != str(out_dir.resolve()):
             return False
         files = json.loads(manifest)["files"]
-        held = {Path(folder, f).relative_to(out_dir).as_posix() for folder, _, names in os.walk(out_dir)
-                for f in names}
-        if held != {*files, MANIFEST}:  # a file added since: a build would remove it
-            return False
-        return all(_sha256((out_dir / name).read_bytes()) == sha for name, sha in files.items())
+        return holds(out_dir, {**files, MANIFEST: stamp["manifest"]})
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return False
+
+
+def holds(out_dir: Path, files: dict[str, str]) -> bool:
+    """Whether `out_dir` holds these files ({relative path: SHA-256}) and no other."""
+    held = {Path(folder, f).relative_to(out_dir).as_posix() for folder, _, names in os.walk(out_dir) for f in names}
+    if held != set(files):  # a file added since: a build would remove it
+        return False
+    try:
+        return all(sha256((out_dir / name).read_bytes()) == digest for name, digest in files.items())
+    except OSError:
         return False
 
 
@@ -84,12 +92,13 @@ def record(out_dir: Path, key: str | None) -> None:
     tmp = path.with_name(f"{path.name}.{os.getpid()}")
     try:
         stamp = {"folder": str(out_dir.resolve()), "inputs": key,
-                 "manifest": _sha256((out_dir / MANIFEST).read_bytes())}
+                 "manifest": sha256((out_dir / MANIFEST).read_bytes())}
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp.write_text(json.dumps(stamp, indent=2, sort_keys=True) + "\n", encoding="utf-8")
         tmp.replace(path)
     except OSError:  # no cache: the next build compiles again
-        tmp.unlink(missing_ok=True)
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
 
 
 def stamp_path(out_dir: Path) -> Path:
@@ -120,5 +129,5 @@ def _distributions() -> list[str]:
     return names
 
 
-def _sha256(data: bytes) -> str:
-    return hashlib.sha256(data).hexdigest()
+def sha256(data: str | bytes) -> str:
+    return hashlib.sha256(data if isinstance(data, bytes) else data.encode("utf-8")).hexdigest()

@@ -63,9 +63,11 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     return out_dir
 
 
-def _same(out_dir: Path, files: dict[str, str]) -> bool:
-    manifest = out_dir / MANIFEST
+def _same(out_dir: Path, files: dict[str, str | bytes]) -> bool:
+    """Whether `out_dir` holds exactly `files` (a file edited or added there since: it is written again)."""
     try:
-        return manifest.read_text(encoding="utf-8") == files[MANIFEST]
+        if (out_dir / MANIFEST).read_text(encoding="utf-8") != files[MANIFEST]:
+            return False
+        return buildcache.holds(out_dir, {name: buildcache.sha256(content) for name, content in files.items()})
     except OSError:
         return False
