@@ -1,5 +1,7 @@
 """Names and numbers fixed by MORSE's conventions, declared once."""
 
+from typing import Literal
+
 SEPARATOR = "."  # fully-qualified names: robot.child.grandchild
 FORBIDDEN_NAME_CHARS = frozenset(". /\\\t\n\r")
 DUPLICATE_SUFFIX = "_{:03d}"  # robot, robot_001, robot_002 ...
@@ -11,6 +13,7 @@ SYNC_PORT = 6000
 DEFAULT_BIND = "127.0.0.1"
 
 DEFAULT_FREQUENCY = 60.0
+TimeStrategy = Literal["best_effort", "fixed_step"]  # the scene's environment.time.strategy, `run --time-strategy`
 DEFAULT_PHYSICS_SUBSTEPS = 8
 
 PSEUDO_COMPONENTS = ("simulation", "time", "communication")
