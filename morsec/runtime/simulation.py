@@ -31,6 +31,9 @@ from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_man
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+# wall-clock s between a frame's sensor messages and the answers to the sleeps that ended at it, so that a client
+# reading its sockets in any order (pymorse's polling thread) has the messages when it gets the answer
+ANSWER_GAP = 0.002
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 
 
@@ -449,6 +452,10 @@ class Simulation:
                 self._flush()
                 if self.view is not None:
                     self.view.sync()
+                if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
+                    self._pause(ANSWER_GAP)
+                self.time_services.wake()
+                self._flush()
                 self._wait(self._delay())
         finally:
             self.close()
@@ -466,13 +473,21 @@ class Simulation:
             self._flush()
             delay = self._delay()  # asked again: a request may have changed the time scale, a client slept
 
+    def _pause(self, seconds: float) -> None:
+        """Poll the sockets for `seconds` of wall time (requests are handled; no frame runs)."""
+        until = time.perf_counter() + seconds
+        while (left := until - time.perf_counter()) > 0 and not self.quitting:
+            self.poller.poll(left)
+            self._flush()
+
     def frame(self) -> None:
-        """One frame: the physics and the components (step), the sensors' messages sent, then the answers
-        to the sleeps that ended at this frame (after the messages: a client whose sleep ended finds them)."""
+        """One frame: the physics and the components (step), then the sensors' messages sent. The answers
+        to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
+        client holding such an answer has had this frame's messages for a while, whatever order its polling
+        thread reads its sockets in."""
         self.step()
         self._send_sensor_messages()
         self._flush()
-        self.time_services.wake()
 
     def step(self) -> None:
         m, d = self.model, self.data

@@ -256,7 +256,12 @@ class TimeServices:
                      "are taken as they arrive from now on", SLEEP_ORDER_WAIT)
             self._start_ready(client)
 
+    def ending(self) -> bool:
+        """Whether a sleep ends at this frame (its answer then leaves after the frame's wait)."""
+        return bool(self.sleepers) and self.sleepers[0][0] <= self.sim.clock.elapsed + 1e-9
+
     def wake(self) -> None:
+        """Answer the sleeps whose time has come."""
         if self.deferred:
             now = _time.perf_counter()
             for client in [c for c, waiting in self.deferred.items() if min(e[3] for e in waiting) <= now]:
