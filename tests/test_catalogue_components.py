@@ -27,7 +27,7 @@ DIFFERENTIAL = [r for r in ROBOTS
 SETTLE_S = 5.0
 MAX_DRIFT_M = 0.01
 MAX_TILT = math.radians(3.0)
-FLOAT_HEIGHT_M = 1.0  # NoGravity robots start in the air: without gravity compensation they would fall
+FLOAT_HEIGHT_M = 2.0  # NoGravity robots start in the air, clear of the ground (the Hummer's wheels reach 1.14 m down)
 
 
 def robot_scene(robot_id: str, z: float) -> str:

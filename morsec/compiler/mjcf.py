@@ -199,7 +199,7 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
             link.joint["armature"] = float(armature[link.joint["name"]])
     x, y, z = (float(v) for v in robot.translate)
     tree.pos = np.array([x, y, cls.origin_z(z, robot.properties)])
-    tree.quat = euler_to_quat(*robot.rotate)
+    tree.quat = euler_to_quat(*(r + o for r, o in zip(robot.rotate, cls.origin_rotation)))
     floats = bool(robot.properties.NoGravity)  # its arms float with it
     components = [_component(c, robot.name, cat, env, floats) for c in robot.components]
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,

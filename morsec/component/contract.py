@@ -276,6 +276,9 @@ class Robot(Component):
     # height of the origin above the ground when the robot stands on it: a robot placed lower stands on the
     # ground, its origin this high (an ATRV's origin is 0.10 m up, as MORSE's); see origin_z
     spawn_height: ClassVar[float] = 0.0
+    # XYZ Euler angles (rad) of the robot's object in MORSE's .blend, to which the builder's rotate() adds:
+    # the robot's frame where a scene puts it with no rotation (the Hummer's: -pi/2 about z)
+    origin_rotation: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
     collision: ClassVar[bool] = True
