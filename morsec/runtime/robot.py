@@ -145,16 +145,25 @@ class RobotHandle:
         self.sim.data.ctrl[self.servo] = [mean[0], mean[1], 0.0]
         self._follow.pop("base servos", None)
 
+    GROUND_MEMORY = 0.25  # s: a robot that touched the ground this long ago still rests on it (it hops)
+
     def _on_ground(self) -> bool:
-        """Whether the robot touches something that is not part of it (the ground, an object)."""
+        """Whether the robot rests on something that is not part of it (the ground, an object): it touched
+        it within GROUND_MEMORY (a robot driven sideways hops on its wheels, off the ground a tick in two;
+        MORSE's body rested on it)."""
         m, d = self.sim.model, self.sim.data
-        if d.ncon == 0:
-            return False
-        own = getattr(self, "_own_geoms", None)
-        if own is None:
-            own = self._own_geoms = np.isin(m.geom_bodyid, self.subtree())
-        g1, g2 = d.contact.geom1[:d.ncon], d.contact.geom2[:d.ncon]
-        return bool(np.any(own[g1] != own[g2]))
+        touching = False
+        if d.ncon:
+            own = getattr(self, "_own_geoms", None)
+            if own is None:
+                own = self._own_geoms = np.isin(m.geom_bodyid, self.subtree())
+            g1, g2 = d.contact.geom1[:d.ncon], d.contact.geom2[:d.ncon]
+            touching = bool(np.any(own[g1] != own[g2]))
+        now = self.sim.clock.elapsed
+        if touching:
+            self._touched = now
+        touched = getattr(self, "_touched", None)
+        return touched is not None and now - touched <= self.GROUND_MEMORY
 
     # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
     # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
