@@ -73,7 +73,7 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str | bytes]:
         files[path] = urdf
         robots.append(RobotEntry(name=robot.name, type=robot.type, component=component_ref(cls),
                                  builder_name=cls.builder_name or robot.type, urdf=path,
-                                 free=not (robot.physics_type == "static" or cls.static),
+                                 free=not (robot.physics_type == "static" or cls.static), friction=robot.friction,
                                  properties=robot.properties.model_dump(mode="json")))
     xml = render_scene(scene, cat, trees, loop_frequency, assets)
     check_mjcf(xml, scene, assets.files)

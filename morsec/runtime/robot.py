@@ -6,7 +6,7 @@ import mujoco
 import numpy as np
 
 from morsec.constants import MAX_FORCE, MAX_POSITION, MAX_SPEED
-from morsec.kits import mjcf_names
+from morsec.kits import ground_friction, mjcf_names
 from morsec.kits.bounds import bounded
 from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
 
@@ -51,6 +51,8 @@ class RobotHandle:
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
         self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
+        self.friction: float | None = None  # set_friction's value (None: Blender's default)
+        self._slid: np.ndarray | None = None  # (vx, vy) at the end of the last interval slid (see coast)
 
     @property
     def free(self) -> bool:
@@ -80,15 +82,20 @@ class RobotHandle:
             self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
             return
         if self.servo:
-            d.ctrl[self.servo] = self.follow("base servos", [linear[0], linear[1], angular[2]])
+            planar = [linear[0], linear[1], angular[2]]
+            if self.free and self.ground:
+                # what MORSE's ground friction left of the command over the period (kits.ground_friction)
+                planar = list(ground_friction.turned(linear[0], linear[1], angular[2],
+                                                     self._slide(linear[0], linear[1], frequency)))
+            d.ctrl[self.servo] = self.follow("base servos", planar)
             if self.free and self.ground and self._follow["base servos"].held == 0:
                 # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
                 # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
                 _, rot = self.pose()
                 v = self._base_qvel()
-                world = rot @ np.array([linear[0], linear[1], 0.0])
+                world = rot @ np.array([planar[0], planar[1], 0.0])
                 v[0], v[1] = world[0], world[1]
-                v[5] = angular[2]
+                v[5] = planar[2]
             if self.free and not self.ground:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
@@ -107,6 +114,56 @@ class RobotHandle:
             else:
                 v[:3] = world
                 v[3:] = angular
+
+    # ---- MORSE's ground friction between the ticks that set a ground robot's velocity (kits.ground_friction)
+    def _slide(self, vx: float, vy: float, frequency: float) -> tuple[float, float]:
+        """The mean planar velocity over the actuator's period of a ground robot set going at (vx, vy), body
+        frame, that the ground's friction then slows down; (vx, vy) itself off the ground."""
+        self._slid = None
+        if not self._on_ground():
+            return vx, vy
+        m = self.sim.model
+        mean, end = ground_friction.slide(vx, vy, ground_friction.ground_friction(self.friction),
+                                          float(np.linalg.norm(m.opt.gravity)), 1.0 / frequency,
+                                          1.0 / self.sim.clock.frequency)
+        self._slid = np.array(end)
+        return mean
+
+    def coast(self, frequency: float) -> None:
+        """No actuator sets the velocity this period (MORSE's Waypoint once arrived or stopped): a ground
+        robot slides on, slowed by the ground's friction until it stops, as MORSE's; the servos then hold
+        it still. A robot that is not on the ground is just held still."""
+        if not self.servo:
+            return
+        if self._slid is None or not (self.free and self.ground):
+            self.apply_speed("Velocity", [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], frequency)
+            return
+        slid = self._slid
+        mean = self._slide(float(slid[0]), float(slid[1]), frequency)
+        if self._slid is None or not np.any(self._slid):
+            self._slid = None  # stopped (or lifted off): from now on held still
+        self.sim.data.ctrl[self.servo] = [mean[0], mean[1], 0.0]
+        self._follow.pop("base servos", None)
+
+    GROUND_MEMORY = 0.25  # s: a robot that touched the ground this long ago still rests on it (it hops)
+
+    def _on_ground(self) -> bool:
+        """Whether the robot rests on something that is not part of it (the ground, an object): it touched
+        it within GROUND_MEMORY (a robot driven sideways hops on its wheels, off the ground a tick in two;
+        MORSE's body rested on it)."""
+        m, d = self.sim.model, self.sim.data
+        touching = False
+        if d.ncon:
+            own = getattr(self, "_own_geoms", None)
+            if own is None:
+                own = self._own_geoms = np.isin(m.geom_bodyid, self.subtree())
+            g1, g2 = d.contact.geom1[:d.ncon], d.contact.geom2[:d.ncon]
+            touching = bool(np.any(own[g1] != own[g2]))
+        now = self.sim.clock.elapsed
+        if touching:
+            self._touched = now
+        touched = getattr(self, "_touched", None)
+        return touched is not None and now - touched <= self.GROUND_MEMORY
 
     # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
     # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
@@ -151,6 +208,7 @@ class RobotHandle:
         """Put the base at a world pose and stop it."""
         place(self.sim.model, self.sim.data, self.body_id, pos, rot)
         self._follow.clear()  # the velocity it had is gone
+        self._slid = None
 
     def place_frame(self, frame_body: int, pos, rot) -> None:
         """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""

@@ -208,6 +208,7 @@ class Simulation:
     def _robot(self, entry: RobotEntry) -> RobotInfo:
         cls = load_class(entry.component)
         handle = RobotHandle(self, entry.name, cls.Properties.model_validate(entry.properties))
+        handle.friction = entry.friction
         return RobotInfo(entry.name, entry.builder_name, handle)
 
     def _component(self, entry: ComponentEntry, robots: dict[str, RobotHandle]) -> ComponentRuntime:

@@ -48,6 +48,7 @@ class RobotEntry(Entry):
     builder_name: str = Field(description="MORSE's class name, as `simulation details` reports it")
     urdf: str = Field(description="its URDF in the build folder")
     free: bool = Field(description="whether it has a free joint (false: static)")
+    friction: float | None = Field(None, description="set_friction's value (none: Blender's default)")
     properties: dict[str, Any]
 
 

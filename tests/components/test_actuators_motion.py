@@ -1,6 +1,7 @@
 """Velocity actuators that set the robot's body velocity (motion_vw, motion_xyw) track their command as
-MORSE's do: MORSE writes the velocity itself, so a turn held for 12 s ends where the arc v/w says and a
-robot sliding sideways goes as far as asked, whatever its wheels' friction against the ground."""
+MORSE's do: MORSE writes the velocity itself, so a turn held for 12 s ends where the arc says and a robot
+sliding sideways goes as far as asked, whatever its wheels' friction against the ground, less only what
+MORSE's Bullet ground friction took between two ticks (morsec.kits.ground_friction)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,15 @@ import math
 import numpy as np
 import pytest
 
+from morsec.kits import ground_friction
 from morsec.testing import simulate
+
+MU, G = ground_friction.ground_friction(None), 9.81
+
+
+def morse_tick(vx: float, vy: float, w: float) -> tuple[float, float, float]:
+    """What MORSE's robot made of (vx, vy, w) over a 60 Hz tick: its mean velocity, friction taken off."""
+    return ground_friction.turned(vx, vy, w, ground_friction.slide(vx, vy, MU, G, 1 / 60, 1 / 60)[0])
 
 
 def atrv(motion: str, objects: str = "", locks: str = "[]") -> str:
@@ -47,6 +56,7 @@ def test_motion_vw_long_turn_follows_the_arc(tmp_path):
     with simulate(atrv("motion_vw"), tmp_path) as h:
         h.run_for(0.3)
         moved, turned = drive(h, t, v=v, w=w)
+    v, _, w = morse_tick(v, 0.0, w)  # 6 % slower, turning 2 % slower, as MORSE's ATRV
     assert turned == pytest.approx(w * t, abs=0.02)
     r = v / w
     assert moved == pytest.approx([r * math.sin(w * t), r * (1 - math.cos(w * t))], abs=0.03)
@@ -57,7 +67,7 @@ def test_motion_xyw_sideways_goes_as_far_as_asked(tmp_path):
     with simulate(atrv("motion_xyw"), tmp_path) as h:
         h.run_for(0.3)
         moved, turned = drive(h, 2.0, x=0.0, y=-1.0, w=0.0)
-    assert moved == pytest.approx([0.0, -2.0], abs=0.02)
+    assert moved == pytest.approx([0.0, 2.0 * morse_tick(0.0, -1.0, 0.0)[1]], abs=0.02)
     assert turned == pytest.approx(0.0, abs=0.01)
 
 
@@ -72,7 +82,8 @@ def test_motion_vw_against_a_wall_pushes_within_bounds(tmp_path):
         h.run_for(3.0)
         handle = h.sim.robots[0].handle
         ctrl = h.sim.data.ctrl[handle.servo]
-        assert ctrl[0] == pytest.approx(1.0 * 1.25 + 0.05)  # pushing as hard as it may, no harder
+        # pushing as hard as it may, no harder (the command: what MORSE's tick leaves of 1 m/s)
+        assert ctrl[0] == pytest.approx(morse_tick(1.0, 0.0, 0.0)[0] * 1.25 + 0.05)
         assert h.body_pose("robot")[0][0] < 0.5  # the wall holds it
         moved, _ = drive(h, 1.0, v=-1.0, w=0.0)
     assert moved[0] == pytest.approx(-1.0, abs=0.05)

@@ -181,15 +181,15 @@ class Waypoint(Actuator):
             self.status = "Arrived"
             self._arrived_at = key
             self.completed("SUCCESS", "Arrived")
-            self.robot.apply_speed(control, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], self.frequency)
+            self._let_go(control)
             return
         if key == self._arrived_at and not self.properties.RemainAtDestination and self.status == "Arrived":
             # arrived, then pushed away: stay put until a new goal comes (RemainAtDestination drives back)
-            self.robot.apply_speed(control, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], self.frequency)
+            self._let_go(control)
             return
         self._arrived_at = None
         if speed == 0:
-            self.robot.apply_speed(control, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], self.frequency)
+            self._let_go(control)
             return
         self.status = "Transit"
 
@@ -230,6 +230,14 @@ class Waypoint(Actuator):
         else:
             vx, vz = v, 0.0
         self.robot.apply_speed(control, [vx, 0.0, vz], [0.0, 0.0, w], self.frequency)
+
+    def _let_go(self, control: str) -> None:
+        """Arrived, stopped or cancelled: MORSE's Waypoint then sets no velocity, so its robot slides on until
+        the ground's friction stops it (0.2 m from 1 m/s: RobotHandle.coast); in Position mode it stays."""
+        if control == "Velocity":
+            self.robot.coast(self.frequency)
+        else:
+            self.robot.apply_speed(control, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], self.frequency)
 
     def _place_target(self, goal: np.ndarray):
         name = self.properties.Target
