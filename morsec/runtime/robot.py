@@ -174,6 +174,17 @@ class RobotHandle:
     def mass(self) -> float:
         return float(self.sim.model.body_subtreemass[self.body_id])
 
+    def centre_of_mass(self) -> np.ndarray:
+        """The whole robot's centre of mass, world frame, from its bodies' (d.xipos: right after a teleport
+        too, which updates the kinematics but not d.subtree_com)."""
+        if not hasattr(self, "_bodies"):
+            self._bodies = np.array(self.subtree(), dtype=int)
+            self._masses = self.sim.model.body_mass[self._bodies].copy()
+        total = float(self._masses.sum())
+        if total <= 0:
+            return self.sim.data.xipos[self.body_id].copy()
+        return self._masses @ self.sim.data.xipos[self._bodies] / total
+
     def weight(self) -> float:
         """Magnitude of the gravity force the robot feels, N (parts compensated by gravcomp excluded)."""
         m = self.sim.model
@@ -217,7 +228,7 @@ class RobotHandle:
         force = bounded(force, MAX_FORCE, "a force (N)")
         torque = bounded(torque, MAX_FORCE, "a torque (N m)")
         # MuJoCo applies xfrc_applied at the base body's own centre of mass: moved to the robot's
-        lever = d.subtree_com[self.body_id] - d.xipos[self.body_id]
+        lever = self.centre_of_mass() - d.xipos[self.body_id]
         self._wrenches[key] = np.concatenate([force, torque + np.cross(lever, force)])
         d.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
 
