@@ -1,5 +1,7 @@
 """Names and numbers fixed by MORSE's conventions, declared once."""
 
+from typing import Literal
+
 SEPARATOR = "."  # fully-qualified names: robot.child.grandchild
 FORBIDDEN_NAME_CHARS = frozenset(". /\\\t\n\r")
 DUPLICATE_SUFFIX = "_{:03d}"  # robot, robot_001, robot_002 ...
@@ -11,6 +13,7 @@ SYNC_PORT = 6000
 DEFAULT_BIND = "127.0.0.1"
 
 DEFAULT_FREQUENCY = 60.0
+TimeStrategy = Literal["best_effort", "fixed_step"]  # the scene's environment.time.strategy, `run --time-strategy`
 DEFAULT_PHYSICS_SUBSTEPS = 8
 
 PSEUDO_COMPONENTS = ("simulation", "time", "communication")
@@ -27,12 +30,11 @@ MAX_INPUT_LINE = 1024 * 1024  # bytes of one message to an actuator's stream
 MAX_QUEUED_ANSWERS = 8 * 1024 * 1024  # bytes of answers waiting for a client that does not read: then dropped
 MAX_REQUESTS_PER_POLL = 200  # request lines of one client handled per poll: the others wait their turn
 MAX_PENDING_REQUESTS = 1000  # asynchronous requests (time sleep ...) one client may have running
-# fixed_step, a client between two of its time sleeps (docs/running.md#time), wall-clock s: the loop waits for
-# its first word at most SLEEP_HOLD_WAIT (halved after each wait in a row that ran out but the first, down to
-# SLEEP_HOLD_FLOOR), then follows the wall clock; SLEEP_HOLD_GRACE after the sleep ended it runs as fast as it can
-# again. A new connection to an actuator stream is waited for SLEEP_HOLD_WAIT at most, for its first message
+# fixed_step, a client between two of its time sleeps (docs/running.md#time), wall-clock s: the loop follows the
+# wall clock, SLEEP_HOLD_GRACE at most after the sleep ended; after a command from a client with no sleep running,
+# or a message to an actuator stream, SLEEP_HOLD_WAIT at most. A new connection to an actuator stream is waited
+# for SLEEP_HOLD_WAIT at most, for its first message
 SLEEP_HOLD_WAIT = 0.2
-SLEEP_HOLD_FLOOR = 0.02
 SLEEP_HOLD_GRACE = 1.0
 # fixed_step, numbered requests (pymorse's ids): a sleep counts from the frame the client's request numbered just
 # before it arrived, if less than SLEEP_WITH_PREVIOUS s (wall) before; if it has not arrived, the sleep waits for

@@ -13,8 +13,9 @@ arm = KukaLWR()
 arm.translate(0.25, 0.0, 0.4)
 robot.append(arm)
 
-# appended to the arm: mounted on its flange (link kuka_7)
+# appended to the arm: placed in the arm's frame (straight up), at its tip, and carried by its last link
 gripper = Gripper()
+gripper.translate(0.0, 0.0, 1.3105)
 gripper.rotate(0.0, -1.5708, 0.0)
 arm.append(gripper)
 

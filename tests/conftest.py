@@ -14,6 +14,20 @@ def repo_root() -> Path:
     return REPO
 
 
+@pytest.fixture(scope="session", autouse=True)
+def private_build_cache(tmp_path_factory):
+    """The stamps of up-to-date builds (morsec.app.buildcache) go to a folder of the test session, not the
+    user's cache; `morsec` processes the tests start inherit it."""
+    import os
+    previous = os.environ.get("XDG_CACHE_HOME")
+    os.environ["XDG_CACHE_HOME"] = str(tmp_path_factory.mktemp("cache"))
+    yield
+    if previous is None:
+        os.environ.pop("XDG_CACHE_HOME", None)
+    else:
+        os.environ["XDG_CACHE_HOME"] = previous
+
+
 @pytest.fixture
 def build_yaml(tmp_path):
     """`build_yaml(text, name="scene")`: write `text` to tmp_path/<name>.yaml, build it with the real

@@ -301,12 +301,16 @@ def test_bpymorse_get_object_and_properties(tmp_path, capsys):
     assert robot.tags == {"Catch_me": True} and robot.components[0].properties.tag == "Box"
     only = scene.environment.morse_only
     assert only["Ground.game.use_actor"] is True
-    assert only["RedBox.properties"] == {"Type": "Box"}
     assert only["bpymorse.get_context_scene().game_settings.fps"] == 120
+    # RedBox is an object of the environment (indoors-1/boxes): the script's to set, as in MORSE
+    assert "RedBox.properties" not in only
+    [red] = [o for o in scene.objects if o.name == "RedBox"]
+    assert red.properties == {"Object": "RedBox", "Type": "Box"} and red.translate == [-7.5, 0.0, 0.965]
+    assert [o.name for o in scene.objects].count("RedBox") == 1
     err = capsys.readouterr().err.replace(str(tmp_path) + os.sep, "")
     assert "sim.py:10:1: warning: bpymorse.get_object('Ground').game.use_actor = True: 'Ground' is an object of " \
            "MORSE's Blender environment file, which morsec does not load" in err
-    assert "sim.py:12:1: warning: bpymorse.properties(bpymorse.get_object('RedBox'), Type='Box')" in err
+    assert "RedBox" not in err
     assert "sim.py:13:1: warning: bpymorse.get_context_scene()" in err
 
 

@@ -48,11 +48,11 @@ def test_car_drives_forward_and_turns_left(tmp_path):
     with simulate(scene("car"), tmp_path) as sim:
         sim.run_for(0.5)
         start = sim.data("car.pose")
-        sim.command("car.steer_force", steer=0.0, force=-400.0, brake=0.0)
+        sim.command("car.steer_force", steer=0.0, force=-20.0, brake=0.0)  # MORSE's forces: 10 kg
         sim.run_for(3.0)
         straight = sim.data("car.pose")
         assert straight["x"] - start["x"] > 1.0 and abs(straight["y"] - start["y"]) < 0.3
-        sim.command("car.steer_force", steer=0.4, force=-400.0, brake=0.0)
+        sim.command("car.steer_force", steer=0.4, force=-20.0, brake=0.0)
         sim.run_for(3.0)
         turned = sim.data("car.pose")
         assert turned["yaw"] - straight["yaw"] > 0.2  # steering left turns counter-clockwise

@@ -253,13 +253,30 @@ def two_rovers():
     robot.append(pose)
     env = Environment("empty")
     env.add_service("socket")
+    rover = ATRV()  # noqa: F841 (created after the Environment: MORSE's default name, ATRV)
+
+
+def no_environment():
+    from morsec.builder import ATRV
+    robot = ATRV()  # noqa: F841
     rover = ATRV()  # noqa: F841 (the last object: named after its variable when the function returns)
 
 
 def test_record_call_names_objects_after_the_function_locals():
     from morsec.app.process import record_call
-    recording = record_call(two_rovers)
+    recording = record_call(no_environment)
     assert [robot["name"] for robot in recording.data["robots"]] == ["robot", "rover"]
+
+
+def test_an_object_created_after_the_environment_keeps_morse_default_name():
+    """MORSE names objects after the script's variables when the Environment is constructed: one created
+    later keeps its .blend object's name (search_and_rescue_testing's `Victim`), with a warning."""
+    from morsec.app.process import record_call
+    recording = record_call(two_rovers)
+    assert [robot["name"] for robot in recording.data["robots"]] == ["robot", "ATRV"]
+    warning, = [w for w in recording.records if "after Environment" in w.message]
+    assert warning.line == two_rovers.__code__.co_firstlineno + 8
+    assert "'ATRV'" in warning.message
 
 
 def test_record_call_locates_an_error_in_the_function():

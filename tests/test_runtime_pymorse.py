@@ -261,3 +261,27 @@ def test_quit(server):
 def socket_connect(port: int) -> None:
     import socket
     socket.create_connection(("127.0.0.1", port), timeout=5).close()
+
+
+@pytest.mark.parametrize("strategy", STRATEGIES)
+def test_a_stream_read_with_last_right_after_a_sleep_has_what_the_frame_did(tmp_path, strategy):
+    """MORSE's feet and ECEF tests: `teleport.publish(p); sim.sleep(0.01); pose.get(); pose_mod.last()`.
+    pymorse's polling thread reads its sockets in the order it opened them; the answer to the sleep leaves
+    2 ms after the frame's messages, so both pose streams already hold the teleported pose when the answer
+    is read, whatever that order."""
+    teleport = {"name": "teleport", "type": "teleport", "streams": ["socket"]}
+    sim = Morsec(scene_file(tmp_path, scene(robot("robot", pose_sensor(), pose_sensor("pose_mod"), teleport),
+                                            strategy=strategy)), tmp_path)
+    start_all(sim)
+    try:
+        with Morse("localhost", sim.service_port) as morse:
+            pose, pose_mod, teleport = morse.robot.pose, morse.robot.pose_mod, morse.robot.teleport
+            pose.get()
+            pose_mod.get()
+            for i in range(1, 16):
+                teleport.publish({"x": float(i), "y": 2.0, "z": 5.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0})
+                morse.sleep(0.01)
+                assert pose.get()["x"] == pytest.approx(i, abs=1e-6)
+                assert pose_mod.last()["x"] == pytest.approx(i, abs=1e-6), f"teleport {i}"
+    finally:
+        sim.stop()

@@ -1,12 +1,17 @@
-"""From what the user names (a scene file or a build folder) to a build folder: load, compile, write."""
+"""From what the user names (a scene file or a build folder) to a build folder: load, compile, write.
+The front ends and the compiler are imported only when something is to be built: running a build folder,
+or building a scene whose build is up to date (morsec.app.buildcache), does not load them."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from morsec.compiler.build import MANIFEST, compile_scene, write_build
-from morsec.component.catalogue import Catalogue, load_catalogue
-from morsec.frontends.load import load_scene
+from morsec.app import buildcache
+from morsec.app.buildcache import MANIFEST
+
+if TYPE_CHECKING:
+    from morsec.component.catalogue import Catalogue
 
 
 def default_build_dir(source: Path) -> Path:
@@ -14,15 +19,26 @@ def default_build_dir(source: Path) -> Path:
 
 
 def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
-    """Compile a scene file into `out_dir` (replaced only once the new build is complete)."""
+    """Compile a scene file into `out_dir` (replaced only once the new build is complete); nothing is done
+    when `out_dir` is an up-to-date build of it."""
     source = Path(source)
+    key = buildcache.inputs_key(source) if catalogue is None else None
+    if buildcache.up_to_date(out_dir, key):
+        return Path(out_dir)
+    from morsec.compiler.build import compile_scene, write_build
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     cat = catalogue or load_catalogue(source.parent)
     write_build(compile_scene(load_scene(source, cat), cat), Path(out_dir))
+    buildcache.record(out_dir, key)
     return Path(out_dir)
 
 
 def check_scene(source: Path, strict: bool = False) -> None:
     """Everything `build` checks, nothing written; `strict`: a builder script's warnings are errors."""
+    from morsec.compiler.build import compile_scene
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     cat = load_catalogue(Path(source).parent)
     compile_scene(load_scene(source, cat, strict), cat)
 
@@ -32,17 +48,26 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     source = Path(source)
     if source.is_dir() and (source / MANIFEST).is_file():
         return source
+    out_dir = Path(out) if out else default_build_dir(source)
+    key = buildcache.inputs_key(source)
+    if buildcache.up_to_date(out_dir, key):
+        return out_dir
+    from morsec.compiler.build import compile_scene, write_build
+    from morsec.component.catalogue import load_catalogue
+    from morsec.frontends.load import load_scene
     cat = load_catalogue(source.parent)
     files = compile_scene(load_scene(source, cat), cat)
-    out_dir = Path(out) if out else default_build_dir(source)
     if not _same(out_dir, files):
         write_build(files, out_dir)
+    buildcache.record(out_dir, key)
     return out_dir
 
 
-def _same(out_dir: Path, files: dict[str, str]) -> bool:
-    manifest = out_dir / MANIFEST
+def _same(out_dir: Path, files: dict[str, str | bytes]) -> bool:
+    """Whether `out_dir` holds exactly `files` (a file edited or added there since: it is written again)."""
     try:
-        return manifest.read_text(encoding="utf-8") == files[MANIFEST]
+        if (out_dir / MANIFEST).read_text(encoding="utf-8") != files[MANIFEST]:
+            return False
+        return buildcache.holds(out_dir, {name: buildcache.sha256(content) for name, content in files.items()})
     except OSError:
         return False

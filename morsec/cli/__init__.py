@@ -1,21 +1,28 @@
 """The `morsec` command: a typer app assembled from one module per command group; each command calls
-one function of the application layer."""
+one function of the application layer.
+
+Typer builds a command's adapter (its click parameters) from the function's signature, and each command
+module imports what its annotations name: a command line that names its command (`morsec run ...`)
+assembles that command only, so `morsec run` pays for neither the other commands nor their imports.
+`morsec`, `morsec --help` or an unknown command assemble all of them."""
 
 from __future__ import annotations
 
+import gc
+import importlib
+import sys
 from typing import Annotated
 
 import typer
 
 from morsec import __version__
-from morsec.cli import catalogue, running, scaffold, scenes
 
-app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False,
-                  help="morsec: MORSE scenes compiled to MuJoCo.")
-
-for command in (scenes.build, scenes.check, scenes.schema, running.run, catalogue.docs, running.render,
-                catalogue.components, scenes.convert, scaffold.create, scaffold.add, scaffold.rm):
-    app.command()(command)
+# command -> the module of morsec.cli defining it (a function of the same name), in the order --help lists them
+COMMANDS = {
+    "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "docs": "catalogue",
+    "render": "running", "components": "catalogue", "convert": "scenes", "create": "scaffold", "add": "scaffold",
+    "rm": "scaffold",
+}
 
 
 def _versions() -> str:
@@ -29,7 +36,6 @@ def _print_version(value: bool) -> None:
         raise typer.Exit()
 
 
-@app.callback()
 def _options(
     version: Annotated[bool | None, typer.Option("--version", callback=_print_version, is_eager=True,
                                                     help="print the versions of morsec and MuJoCo")] = None,
@@ -37,14 +43,43 @@ def _options(
     """morsec: MORSE scenes compiled to MuJoCo."""
 
 
-@app.command()
 def version() -> None:
     """Print the versions of morsec and MuJoCo."""
     typer.echo(_versions())
 
 
-def main() -> None:
-    app()
+def make_app(only: str | None = None) -> typer.Typer:
+    """The command line with every command, or with the command `only` alone (a known command's name)."""
+    app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False,
+                      help="morsec: MORSE scenes compiled to MuJoCo.")
+    for name, module in COMMANDS.items():
+        if only is None or only == name:
+            app.command()(getattr(importlib.import_module(f"morsec.cli.{module}"), name))
+    app.callback()(_options)
+    app.command()(version)
+    return app
 
 
-__all__ = ["app", "main"]
+def command_of(args: list[str]) -> str | None:
+    """The command a command line names, when it names a known one first; None otherwise."""
+    return args[0] if args and args[0] in COMMANDS else None
+
+
+def main(args: list[str] | None = None, prog_name: str | None = None) -> None:
+    args = sys.argv[1:] if args is None else list(args)
+    command = command_of(args)
+    if command == "run":
+        # start-up makes long-lived objects only (modules, classes, models): the cyclic garbage collector's
+        # passes over them are wasted, a tenth of the start. morsec.runtime.launch turns it on again, once
+        # the simulation is initialized
+        gc.disable()
+    make_app(command)(args=args, prog_name=prog_name)
+
+
+def __getattr__(name: str):
+    if name == "app":  # the whole command line (typer.testing's CliRunner, docs)
+        return make_app()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+__all__ = ["COMMANDS", "main", "make_app"]

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from morsec.cli.common import console, err_console, fail, on_terminal
+from morsec.cli.common import console, fail, on_terminal
 from morsec.errors import MorsecError
 
 
@@ -22,7 +22,7 @@ def components(name: Annotated[str | None, typer.Argument(help="a component id o
         fail(err)
     if name is not None and on_terminal():
         from rich.markdown import Markdown
-        console.print(Markdown(text))
+        console().print(Markdown(text))
     else:
         typer.echo(text)
 
@@ -43,7 +43,8 @@ def docs(
             from rich.progress import Progress
 
             from morsec.app.gallery import picture_count, render_pictures
-            with Progress(console=err_console, transient=True, disable=not err_console.is_terminal) as progress:
+            err = console(stderr=True)
+            with Progress(console=err, transient=True, disable=not err.is_terminal) as progress:
                 task = progress.add_task("rendering pictures", total=picture_count(cat))
                 written += render_pictures(cat, out, advance=lambda: progress.advance(task))
         typer.echo(f"wrote {len(written)} files in {out}")

@@ -1,18 +1,23 @@
-"""What every command shares: user errors in one line with their exit code, output for a terminal or a pipe."""
+"""What every command shares: user errors in one line with their exit code, output for a terminal or a pipe.
+rich is imported only by the commands that print with it (`morsec run` does not)."""
 
 from __future__ import annotations
 
 import sys
+from functools import cache
 from typing import NoReturn
 
 import typer
-from rich.console import Console
 
 from morsec.errors import MorsecError
 
-# rich writes colour and progress bars only on a terminal (and honours NO_COLOR); piped output stays plain
-console = Console(highlight=False)
-err_console = Console(stderr=True, highlight=False)
+
+@cache
+def console(stderr: bool = False):
+    """rich's console on stdout (or stderr): colour and progress bars only on a terminal (it honours
+    NO_COLOR); piped output stays plain."""
+    from rich.console import Console
+    return Console(stderr=stderr, highlight=False)
 
 
 def fail(err: MorsecError) -> NoReturn:

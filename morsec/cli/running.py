@@ -16,10 +16,10 @@ from morsec.constants import (
     SERVICE_PORT,
     SERVICE_PORT_ATTEMPTS,
     STREAM_PORT_BASE,
+    TimeStrategy,
 )
 from morsec.errors import MorsecError
 from morsec.runtime.view import ViewKind
-from morsec.scene.models import TimeStrategy
 
 
 def run(

@@ -7,9 +7,8 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.progress import track
 
-from morsec.cli.common import err_console, fail
+from morsec.cli.common import console, fail
 from morsec.errors import MorsecError
 
 
@@ -35,8 +34,11 @@ def check(
     """Validate scenes without writing anything (for CI): exit 0 when all are valid, 2 otherwise."""
     from morsec.app.project import check_scene
     failed = 0
-    many = len(scenes) > 3 and err_console.is_terminal
-    for path in track(scenes, description="checking", console=err_console, transient=True) if many else scenes:
+    items = scenes
+    if len(scenes) > 3 and console(stderr=True).is_terminal:
+        from rich.progress import track
+        items = track(scenes, description="checking", console=console(stderr=True), transient=True)
+    for path in items:
         try:
             check_scene(path, strict)
         except MorsecError as err:

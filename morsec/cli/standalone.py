@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from morsec.cli import app
+from morsec.cli import main as morsec_main
 from morsec.errors import MorsecError
 from morsec.frontends.builder.script import preload
 from morsec.frontends.builder.session import Session
@@ -32,4 +32,4 @@ def standalone_main(session: Session) -> None:
     except MorsecError as err:
         sys.stderr.write(f"error: {err}\n")
         raise SystemExit(err.exit_code) from None
-    app(args=morsec_args(sys.argv[1:], str(script)), prog_name="morsec")
+    morsec_main(morsec_args(sys.argv[1:], str(script)), prog_name="morsec")

@@ -22,7 +22,7 @@ from morsec.component.catalogue import Catalogue
 from morsec.component.contract import Component, Environment, Prop
 from morsec.errors import SceneError
 from morsec.kits import mjcf_names
-from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec, quat_to_matrix
+from morsec.kits.geometry import euler_to_quat, fmt, fmt_vec, matrix_to_quat, quat_to_matrix
 from morsec.kits.mjcf_names import part
 from morsec.resources import data_dir
 from morsec.scene.naming import join
@@ -147,7 +147,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     ), mounts=_mounts(scene, cat))
 
 
-def pretty_xml(text: str, mounts: dict[str, str] | None = None) -> str:
+def pretty_xml(text: str, mounts: dict[str, tuple[str, str | None]] | None = None) -> str:
     """Parse (which also proves the templates produced well-formed XML), move mounted components' bodies
     (see `_mounts`) and re-indent."""
     try:
@@ -201,7 +201,7 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
             link.joint["armature"] = float(armature[link.joint["name"]])
     x, y, z = (float(v) for v in robot.translate)
     tree.pos = np.array([x, y, cls.origin_z(z, robot.properties)])
-    tree.quat = euler_to_quat(*robot.rotate)
+    tree.quat = euler_to_quat(*(r + o for r, o in zip(robot.rotate, cls.origin_rotation)))
     floats = bool(robot.properties.NoGravity)  # its arms float with it
     components = [_component(c, robot.name, cat, env, floats) for c in robot.components]
     sites = []
@@ -406,37 +406,61 @@ def _device_tree(path: Path, mtime_ns: int) -> Link:
     return read_urdf(expand_xacro(path, {}), str(path))
 
 
-def _mounts(scene, cat: Catalogue) -> dict[str, str]:
-    """{child component body: body to nest it in} for the children of components whose class sets
-    `mount_body` (a body of its own model, named relative to the component: "tilt" -> `<fqn>/tilt`): a
-    camera on a pan-tilt unit goes in the tilt body, a gripper on an arm in its last link; and for the
-    components a robot class mounts on another one's body (`component_mounts`)."""
+def _mounts(scene, cat: Catalogue) -> dict[str, tuple[str, str | None]]:
+    """{child component body: (body to nest it in, None or the component whose frame its pose is in)} for the
+    children of components whose class sets `mount_body` (a body of its own model, named relative to the
+    component: "tilt" -> `<fqn>/tilt`): a camera on a pan-tilt unit goes in the tilt body, a gripper on an arm
+    in its last link. A class that also sets `mount_in_own_frame` (an armature, as MORSE's) reads its
+    children's translate / rotate in its own frame, its joints at zero: they keep that place, carried by the
+    mount body. And the components a robot class mounts on another one's body (`component_mounts`)."""
     devices = cat.devices()
-    out: dict[str, str] = {}
+    out: dict[str, tuple[str, str | None]] = {}
     for _, comp, fqn, _, _ in walk_components(scene):
-        mount = getattr(devices[comp.type], "mount_body", None)
+        cls = devices[comp.type]
+        mount = getattr(cls, "mount_body", None)
         if mount:
+            own_frame = fqn if getattr(cls, "mount_in_own_frame", False) else None
             for child in comp.components:
-                out[join(fqn, child.name)] = part(fqn, mount)
+                out[join(fqn, child.name)] = (part(fqn, mount), own_frame)
     # a robot's component riding on another component's body (the PR2's head and arms on its torso lift)
     for robot in scene.robots:
         names = {c.name for c in robot.components}
         for name, (host, body) in cat.get("robots", robot.type).component_mounts.items():
             if name in names and host in names:
-                out[join(robot.name, name)] = part(join(robot.name, host), body)
+                out[join(robot.name, name)] = (part(join(robot.name, host), body), None)
     return out
 
 
-def _move_bodies(root: ET.Element, mounts: dict[str, str]) -> None:
+def _frame(body: ET.Element) -> tuple[np.ndarray, np.ndarray]:
+    """(position, rotation matrix) of a body in its parent body, from its `pos` and `quat`."""
+    pos = np.array([float(v) for v in body.get("pos", "0 0 0").split()])
+    quat = [float(v) for v in body.get("quat", "1 0 0 0").split()]
+    return pos, quat_to_matrix(quat)
+
+
+def _move_bodies(root: ET.Element, mounts: dict[str, tuple[str, str | None]]) -> None:
     parents = {child: parent for parent in root.iter() for child in parent}
     bodies = {name: b for b in root.iter("body") if (name := b.get("name")) is not None}
-    for child, target in mounts.items():
+    for child, (target, own_frame) in mounts.items():
         if target not in bodies:
             owner = mjcf_names.owner(target)
             own = ", ".join(sorted(b for b in bodies if b != owner and mjcf_names.belongs_to(b, owner))) or "none"
             raise SceneError(f"component {owner!r}: its class mounts its children on body {target!r}, which its "
                              f"model does not have (its bodies: {own})")
         body = bodies[child]
+        if own_frame is not None:
+            # the mount body's pose in the component's frame, joints at zero, then the child's pose in it
+            pos, rot = np.zeros(3), np.eye(3)
+            chain, node = [], bodies[target]
+            while node is not bodies[own_frame]:
+                chain.append(node)
+                node = parents[node]
+            for node in reversed(chain):
+                p, r = _frame(node)
+                pos, rot = pos + rot @ p, rot @ r
+            p, r = _frame(body)
+            body.set("pos", fmt_vec(np.round(rot.T @ (p - pos), 12) + 0.0))
+            body.set("quat", fmt_vec(np.round(matrix_to_quat(rot.T @ r), 12) + 0.0))
         parents[body].remove(body)
         bodies[target].append(body)
         parents[body] = bodies[target]

@@ -1,12 +1,13 @@
-"""Robots: xacro -> URDF (written to the build, for ROS tools) -> a tree of links read with yourdfpy,
-from which the MJCF bodies are rendered."""
+"""Robots: xacro -> URDF (written to the build, for ROS tools) -> a tree of links, from which the MJCF
+bodies are rendered."""
 
 from __future__ import annotations
 
-import io
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import SimpleNamespace
+from xml.etree import ElementTree
 
 import numpy as np
 
@@ -61,14 +62,22 @@ class Link:
 
 
 def read_urdf(text: str, source: str) -> Link:
-    """Parse URDF text into a link tree rooted at the base link."""
-    import yourdfpy
+    """Parse URDF text into a link tree rooted at the base link.
+
+    A small reader of the elements morsec uses (links, joints, materials, inertials, visuals, collisions),
+    on the standard library's XML parser: it reads each value as yourdfpy does (the same defaults, the same
+    origin matrices), so that the compiled scene is the same, and a build needs neither yourdfpy nor the
+    trimesh, scipy and networkx it imports (tests/test_urdf_reader.py checks both readers agree on
+    every catalogue robot)."""
     try:
-        urdf = yourdfpy.URDF.load(io.StringIO(text), build_scene_graph=False, build_collision_scene_graph=False,
-                                  load_meshes=False, load_collision_meshes=False)
-    except Exception as err:
+        robot = _robot(ElementTree.fromstring(text))
+    except Exception as err:  # malformed XML, a missing attribute or element, a bad number
         raise SceneError(f"{source}: invalid URDF: {err}") from None
-    robot = urdf.robot
+    return link_tree(robot, source)
+
+
+def link_tree(robot, source: str) -> Link:
+    """The link tree of a parsed URDF robot (its links, joints and materials, with yourdfpy's attributes)."""
     links = {link.name: link for link in robot.links}
     # materials named in a visual but defined once at robot level carry their colour there
     materials = {m.name: m for m in (robot.materials or []) if m.name}
@@ -111,6 +120,107 @@ def read_urdf(text: str, source: str) -> Link:
         return link
 
     return make(roots[0], None)
+
+
+# ---- the URDF elements, as read from the XML: each value parsed as yourdfpy parses it (its types included:
+# numpy arrays where it has them), so that what is compiled from them does not depend on the reader
+
+def _robot(root) -> SimpleNamespace:
+    return SimpleNamespace(name=root.attrib["name"], links=[_link(e) for e in root.findall("link")],
+                           joints=[_urdf_joint(e) for e in root.findall("joint")],
+                           materials=[_material(e) for e in root.findall("material")])
+
+
+def _link(element) -> SimpleNamespace:
+    inertial = element.find("inertial")
+    if inertial is not None:
+        mass = inertial.find("mass")
+        inertial = SimpleNamespace(origin=_origin(inertial.find("origin")), inertia=_inertia(inertial.find("inertia")),
+                                   mass=None if mass is None else float(mass.get("value", 0.0)))
+    return SimpleNamespace(
+        name=element.attrib["name"], inertial=inertial,
+        visuals=[SimpleNamespace(geometry=_geometry(v.find("geometry")), origin=_origin(v.find("origin")),
+                                 material=_material(v.find("material"))) for v in element.findall("visual")],
+        collisions=[SimpleNamespace(geometry=_geometry(c.find("geometry")), origin=_origin(c.find("origin")))
+                    for c in element.findall("collision")])
+
+
+def _urdf_joint(element) -> SimpleNamespace:
+    axis, limit, dynamics = element.find("axis"), element.find("limit"), element.find("dynamics")
+    return SimpleNamespace(
+        name=element.attrib["name"], type=element.get("type"), parent=element.find("parent").get("link"),
+        child=element.find("child").get("link"), origin=_origin(element.find("origin")),
+        axis=np.array([1.0, 0, 0]) if axis is None else np.array([float(v) for v in axis.get("xyz", "1 0 0").split()]),
+        limit=None if limit is None else SimpleNamespace(lower=_number(limit.get("lower")),
+                                                         upper=_number(limit.get("upper"))),
+        dynamics=None if dynamics is None else SimpleNamespace(damping=dynamics.get("damping"),
+                                                               friction=dynamics.get("friction")))
+
+
+def _number(text: str | None) -> float | None:
+    return None if text is None else float(text)
+
+
+def _origin(element) -> np.ndarray | None:
+    """<origin xyz rpy> as a 4x4 matrix: the translation, then the rotation R = Rz(yaw) Ry(pitch) Rx(roll),
+    composed with the same numpy operations as yourdfpy's (trimesh's compose_matrix), to the last bit."""
+    if element is None:
+        return None
+    xyz = np.array([float(v) for v in element.get("xyz", "0 0 0").split()])
+    rpy = np.array([float(v) for v in element.get("rpy", "0 0 0").split()])
+    translation = np.identity(4)
+    translation[:3, 3] = xyz[:3]
+    si, sj, sk = np.sin(rpy[0]), np.sin(rpy[1]), np.sin(rpy[2])
+    ci, cj, ck = np.cos(rpy[0]), np.cos(rpy[1]), np.cos(rpy[2])
+    cc, cs, sc, ss = ci * ck, ci * sk, si * ck, si * sk
+    rotation = np.eye(4)
+    rotation[0, 0], rotation[0, 1], rotation[0, 2] = cj * ck, sj * sc - cs, sj * cc + ss
+    rotation[1, 0], rotation[1, 1], rotation[1, 2] = cj * sk, sj * ss + cc, sj * cs - sc
+    rotation[2, 0], rotation[2, 1], rotation[2, 2] = -sj, cj * si, cj * ci
+    matrix = np.dot(np.dot(np.identity(4), translation), rotation)
+    matrix /= matrix[3, 3]
+    return matrix
+
+
+def _inertia(element) -> np.ndarray | None:
+    if element is None:
+        return None
+    get = element.get
+    return np.array([[get("ixx", 1.0), get("ixy", 0.0), get("ixz", 0.0)],
+                     [get("ixy", 0.0), get("iyy", 1.0), get("iyz", 0.0)],
+                     [get("ixz", 0.0), get("iyz", 0.0), get("izz", 1.0)]], dtype=np.float64)
+
+
+def _material(element) -> SimpleNamespace | None:
+    if element is None:
+        return None
+    color = element.find("color")
+    if color is not None:
+        color = SimpleNamespace(rgba=np.array([float(v) for v in color.get("rgba", "1 1 1 1").split()]))
+    return SimpleNamespace(name=element.get("name"), color=color)
+
+
+def _geometry(element) -> SimpleNamespace:
+    shape = element[0]
+    geometry = SimpleNamespace(box=None, cylinder=None, sphere=None, mesh=None)
+    if shape.tag == "box":  # a comma may separate the values
+        geometry.box = SimpleNamespace(size=np.array(shape.attrib["size"].replace(",", " ").split(), dtype=np.float64))
+    elif shape.tag == "cylinder":
+        geometry.cylinder = SimpleNamespace(radius=float(shape.attrib["radius"]), length=float(shape.attrib["length"]))
+    elif shape.tag == "sphere":
+        geometry.sphere = SimpleNamespace(radius=float(shape.attrib["radius"]))
+    elif shape.tag == "mesh":
+        geometry.mesh = SimpleNamespace(filename=shape.get("filename"), scale=_scale(shape))
+    else:
+        raise ValueError(f"Unknown tag: {shape.tag}")
+    return geometry
+
+
+def _scale(element) -> float | np.ndarray | None:
+    values = element.get("scale", "").replace(",", " ").split()
+    if not values:
+        return None
+    return float(values[0]) if len(values) == 1 else np.array([float(v) for v in values])
 
 
 def _joint(joint) -> dict | None:

@@ -12,13 +12,10 @@ from __future__ import annotations
 import hashlib
 import importlib.machinery
 import importlib.util
-import os
 import re
 import sys
-import tomllib
 from dataclasses import dataclass, field
 from functools import lru_cache
-from importlib.metadata import entry_points
 from pathlib import Path
 from typing import Any, Literal, Protocol, get_args, get_origin, overload
 
@@ -37,12 +34,17 @@ from morsec.component.contract import (
 from morsec.errors import MorsecError, did_you_mean, one_of
 from morsec.modifiers.base import Modifier
 from morsec.modifiers.registry import MODIFIERS
-from morsec.resources import data_dir
+from morsec.resources import (  # noqa: F401 (the search path's names, where they used to be)
+    ENTRY_POINT_GROUP,
+    ENV_VAR,
+    PROJECT_FILE,
+    data_dir,
+    project_component_dirs,
+    project_root,
+    search_path,
+)
 
-PROJECT_FILE = "morsec.toml"
 BUILTIN_ROOT = "morsec"  # how a build names the folder of the built-in components
-ENV_VAR = "MORSEC_COMPONENTS"
-ENTRY_POINT_GROUP = "morsec.components"
 BASIC_TYPES = (bool, int, float, str)
 
 
@@ -109,45 +111,6 @@ class Catalogue:
         devices = sorted(self.devices().items())
         return {name: {cid: impl for cid, cls in devices if (impl := modifier_class(name, cls)) is not None}
                 for name in MODIFIERS}
-
-
-def project_root(start: Path) -> Path | None:
-    """The nearest folder at or above `start` holding a `morsec.toml` project file."""
-    start = start.resolve()
-    for folder in (start, *start.parents):
-        if (folder / PROJECT_FILE).is_file():
-            return folder
-    return None
-
-
-def project_component_dirs(root: Path) -> list[Path]:
-    with open(root / PROJECT_FILE, "rb") as f:
-        try:
-            config = tomllib.load(f)
-        except tomllib.TOMLDecodeError as err:
-            raise MorsecError(f"{root / PROJECT_FILE}: {err}") from None
-    dirs = config.get("project", {}).get("components", ["components"])
-    return [(root / d) for d in dirs]
-
-
-def search_path(start: Path | None = None) -> tuple[Path, ...]:
-    """Built-ins, then entry points, then $MORSEC_COMPONENTS, then the project's folders (from `start` up)."""
-    paths = [data_dir("components")]
-    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
-        target = ep.load()
-        paths.append(Path(target() if callable(target) else target))
-    for item in os.environ.get(ENV_VAR, "").split(os.pathsep):
-        if item:
-            paths.append(Path(item))
-    root = project_root(start if start is not None else Path.cwd())
-    if root is not None:
-        paths.extend(project_component_dirs(root))
-    unique: list[Path] = []
-    for p in paths:
-        p = p.resolve()
-        if p not in unique and p.is_dir():
-            unique.append(p)
-    return tuple(unique)
 
 
 def load_catalogue(start: Path | None = None) -> Catalogue:

@@ -101,6 +101,10 @@ class Device(Component):
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None
+    # True: the children's translate / rotate are in this component's own frame with its joints at zero (not
+    # in the mount body's), and they keep that place on the mount body: MORSE's armatures, whose children
+    # are placed in the arm's frame and ride on its end
+    mount_in_own_frame: ClassVar[bool] = False
     # the modifiers (`alter(name)`) that apply to this component: {name: Modifier class}, names from
     # morsec.modifiers.registry, e.g. {"noise": PoseNoise, "ned": ToNED}. A subclass (a preset, a level)
     # inherits them, as any class attribute; to add some: {**Base.modifiers, "feet": ToFeet}
@@ -272,6 +276,9 @@ class Robot(Component):
     # height of the origin above the ground when the robot stands on it: a robot placed lower stands on the
     # ground, its origin this high (an ATRV's origin is 0.10 m up, as MORSE's); see origin_z
     spawn_height: ClassVar[float] = 0.0
+    # XYZ Euler angles (rad) of the robot's object in MORSE's .blend, to which the builder's rotate() adds:
+    # the robot's frame where a scene puts it with no rotation (the Hummer's: -pi/2 about z)
+    origin_rotation: ClassVar[tuple[float, float, float]] = (0.0, 0.0, 0.0)
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
     collision: ClassVar[bool] = True
@@ -319,6 +326,10 @@ class Prop(Component):
 
     kind = "prop"
     template: ClassVar[str] = "model.xml.j2"
+    # the prop's own values of the fields an `objects:` entry leaves out (size, color, dynamic, mass,
+    # properties), e.g. a MORSE .blend object's: {"size": [0.04, 0.12, 0.2], "dynamic": True}; properties
+    # the entry gives are added to the prop's
+    defaults: ClassVar[dict] = {}
 
 
 KINDS: dict[str, type[Component]] = {

@@ -21,7 +21,7 @@ class ComponentProperties(BaseModel):
     description (to change its default) keeps the description, and unless it gives its own the bounds
     (ge, gt, ...), of the class it comes from."""
 
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True)
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, validate_assignment=True, defer_build=True)
 
     @classmethod
     def __pydantic_init_subclass__(cls, **kwargs) -> None:

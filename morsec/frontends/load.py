@@ -7,7 +7,6 @@ from pathlib import Path
 from pydantic import BaseModel
 
 from morsec.component.catalogue import Catalogue, load_catalogue
-from morsec.frontends.builder.script import run_builder_script
 from morsec.frontends.text import TOML_SUFFIXES, YAML_SUFFIXES, read_scene_file
 from morsec.scene.validate import validate_scene
 
@@ -21,6 +20,7 @@ def load_scene(path: Path, catalogue: Catalogue | None = None, strict: bool = Fa
     path = Path(path)
     cat = catalogue or load_catalogue(path.parent)
     if path.suffix in BUILDER_SUFFIXES:
+        from morsec.frontends.builder.script import run_builder_script
         return run_builder_script(path, cat, strict)
     data, smap = read_scene_file(path)
     return validate_scene(data, smap, cat)

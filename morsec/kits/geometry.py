@@ -22,16 +22,9 @@ def euler_to_quat(rx: float, ry: float, rz: float) -> np.ndarray:
 
 
 def matrix_to_euler(r: np.ndarray) -> tuple[float, float, float]:
-    """(roll, pitch, yaw) of a rotation matrix R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r = np.asarray(r).reshape(3, 3)
-    pitch = math.asin(max(-1.0, min(1.0, -r[2, 0])))
-    if abs(r[2, 0]) < 1 - 1e-9:
-        roll = math.atan2(r[2, 1], r[2, 2])
-        yaw = math.atan2(r[1, 0], r[0, 0])
-    else:  # gimbal lock: put everything in yaw
-        roll = 0.0
-        yaw = math.atan2(-r[0, 1], r[1, 1])
-    return roll, pitch, yaw
+    """(roll, pitch, yaw) of a rotation matrix R = Rz(yaw) @ Ry(pitch) @ Rx(roll), chosen as Blender chose
+    (see euler_of_xmat)."""
+    return euler_of_xmat(np.asarray(r, float).reshape(9).tolist())
 
 
 def quat_to_matrix(q) -> np.ndarray:
@@ -79,13 +72,25 @@ def fmt_vec(values) -> str:
 # ---- the same on plain floats: a rotation matrix as MuJoCo's xmat row-major 9-list. A few microseconds
 # less per call than numpy on 3x3, which matters for sensors ticking every frame.
 
+# Below this, cos(pitch) is taken for 0 (pitch +-90 degrees): Blender's threshold, 16 float epsilons
+GIMBAL_LOCK = 16 * 1.1920929e-07
+
+
 def euler_of_xmat(m) -> tuple[float, float, float]:
-    """(roll, pitch, yaw) of a row-major 3x3 rotation R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    r20 = m[6]
-    pitch = math.asin(-1.0 if r20 > 1.0 else 1.0 if r20 < -1.0 else -r20)
-    if abs(r20) < 1 - 1e-9:
-        return math.atan2(m[7], m[8]), pitch, math.atan2(m[3], m[0])
-    return 0.0, pitch, math.atan2(-m[1], m[4])
+    """(roll, pitch, yaw) of a row-major 3x3 rotation R = Rz(yaw) @ Ry(pitch) @ Rx(roll), as Blender's
+    matrix-to-Euler gave MORSE: of the two triples that make the same rotation (pitch in [-pi/2, pi/2], or
+    pitch beyond it with roll and yaw turned by pi), the one with the smaller sum of absolute angles (the
+    first on a tie). A rotation of pi about y reads (0, pi, 0), not (pi, 0, pi). In gimbal lock (pitch
+    +-90 degrees) the rest of the rotation goes in roll and yaw is 0."""
+    r00, r10, r20, r21, r22 = m[0], m[3], m[6], m[7], m[8]
+    cy = math.hypot(r00, r10)
+    if cy <= GIMBAL_LOCK:
+        return math.atan2(-m[5], m[4]), math.atan2(-r20, cy), 0.0
+    first = (math.atan2(r21, r22), math.atan2(-r20, cy), math.atan2(r10, r00))
+    second = (math.atan2(-r21, -r22), math.atan2(-r20, -cy), math.atan2(-r10, -r00))
+    if abs(first[0]) + abs(first[1]) + abs(first[2]) > abs(second[0]) + abs(second[1]) + abs(second[2]):
+        return second
+    return first
 
 
 def transpose_times(a, b) -> list[float]:

@@ -6,7 +6,8 @@
 `solve` puts the origin of `body` (a link of the arm) at `pos` (and its frame at `rot`), world frame: damped
 least squares on `mj_jacBody` of that body, on a scratch MjData (the simulation's own is never touched),
 the joints held within their limits. It returns joint values (root to tip, as `servos.names`) and how far
-from the target they leave the body."""
+from the target they leave the body. A target out of reach gives the least-squares compromise between
+position and orientation, an angle error counting `rot_weight` metres per radian."""
 
 from __future__ import annotations
 
@@ -19,6 +20,8 @@ from morsec.kits.geometry import matrix_to_quat, quat_to_matrix
 
 IK_DAMPING = 0.02  # damped least squares: lambda, m (rad)
 IK_MAX_STEP = 0.2  # rad (m) per iteration and joint
+IK_BETTER = 1e-6  # m^2: how much lower a restart's squared error must be to replace the first try's
+IK_MAX_DAMPING = 100.0  # Levenberg-Marquardt: no step lowers the error even this damped: a minimum
 
 
 class InverseKinematics:
@@ -31,14 +34,15 @@ class InverseKinematics:
         self.scratch = mujoco.MjData(model)
 
     def solve(self, data, body: int, pos, rot=None, *, tolerances: tuple[float, float], start=None,
-              iterations: int = 200, restarts: int = 0) -> tuple[np.ndarray, float, float]:
+              iterations: int = 200, restarts: int = 0, rot_weight: float = 1.0) -> tuple[np.ndarray, float, float]:
         """Joint values (within the limits) putting body `body`'s origin at `pos` (and its frame at `rot`),
         from `start` (default: the joints in `data`, the simulation's MjData, which also gives the rest of
         the model: the robot's pose, other joints): damped least squares on MuJoCo's Jacobian, joints at a
         limit that the step would push further left out of the step. If that does not reach the target
         within half the `tolerances` (m, rad), up to `restarts` more tries from the zero pose and from fixed
-        pseudo-random poses (deterministic). Returns (joints, remaining distance m, remaining angle rad) of
-        the best try."""
+        pseudo-random poses (deterministic). Out of reach, the joints settle where the sum of the squared
+        distance and the squared angle times `rot_weight` (m/rad) is least. Returns (joints, remaining
+        distance m, remaining angle rad) of the best try."""
         servos = self.servos
         tol_p, tol_a = tolerances
         best = None
@@ -53,16 +57,22 @@ class InverseKinematics:
                 lo = np.where(servos.limited, servos.range[:, 0], -math.pi)
                 hi = np.where(servos.limited, servos.range[:, 1], math.pi)
                 q0 = lo + seeds.random(len(first)) * (hi - lo)
-            q, err_p, err_a = self._dls(data, body, pos, rot, q0, iterations, tol_p, tol_a)
-            score = err_p + err_a * 0.1
-            if best is None or score < best[0]:
+            q, err_p, err_a = self._dls(data, body, pos, rot, q0, iterations, tol_p, tol_a, rot_weight)
+            score = err_p ** 2 + (rot_weight * err_a) ** 2
+            # another start must do clearly better: out of reach, the same compromise is found from many
+            # starts, in other (twisted) poses of a redundant arm; the first, from where the arm is, is kept
+            if best is None or score < best[0] - IK_BETTER:
                 best = (score, q, err_p, err_a)
             if err_p <= tol_p / 2 and err_a <= tol_a / 2:
                 break
         return best[1], best[2], best[3]
 
-    def _dls(self, data, body: int, pos, rot, q, iterations: int, tol_p: float,
-             tol_a: float) -> tuple[np.ndarray, float, float]:
+    def _dls(self, data, body: int, pos, rot, q, iterations: int, tol_p: float, tol_a: float,
+             rot_weight: float) -> tuple[np.ndarray, float, float]:
+        """Levenberg-Marquardt: damped least-squares steps, a step that does not lower the (weighted) error
+        retried with more damping. So an unreachable target's iterations settle on the least error instead
+        of swinging about it (a stretched arm is singular: the Jacobian does not see that bending loses
+        reach)."""
         m, d, servos = self.model, self.scratch, self.servos
         d.qpos[:] = data.qpos
         q = servos.clamp(q)
@@ -70,27 +80,30 @@ class InverseKinematics:
         jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
         lo = np.where(servos.limited, servos.range[:, 0], -np.inf)
         hi = np.where(servos.limited, servos.range[:, 1], np.inf)
-        err_p = err_a = math.inf
-        for _ in range(iterations):
+        pos = np.asarray(pos, dtype=float)
+        rot = None if rot is None else np.asarray(rot)
+
+        def evaluate(q):
             d.qpos[servos.qpos] = q
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
-            ep = np.asarray(pos, dtype=float) - d.xpos[body]
-            err_p = float(np.linalg.norm(ep))
-            if rot is not None:
-                er = rotation_error(np.asarray(rot), d.xmat[body].reshape(3, 3))
-                err_a = float(np.linalg.norm(er))
-                err = np.concatenate([ep, er])
-            else:
-                err, err_a = ep, 0.0
+            ep = pos - d.xpos[body]
+            if rot is None:
+                return ep, float(np.linalg.norm(ep)), 0.0
+            er = rotation_error(rot, d.xmat[body].reshape(3, 3))
+            return np.concatenate([ep, rot_weight * er]), float(np.linalg.norm(ep)), float(np.linalg.norm(er))
+
+        err, err_p, err_a = evaluate(q)
+        damping = IK_DAMPING
+        for _ in range(iterations):
             if err_p < tol_p / 20 and err_a < tol_a / 20:
                 break
             mujoco.mj_jacBody(m, d, jacp, jacr, body)
-            jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], jacr[:, cols]])
+            jac = jacp[:, cols] if rot is None else np.vstack([jacp[:, cols], rot_weight * jacr[:, cols]])
             free = np.ones(len(q), dtype=bool)
             for _ in range(len(q)):  # joints stuck at a limit leave the step
                 j = jac * free
-                dq = j.T @ np.linalg.solve(j @ j.T + IK_DAMPING ** 2 * np.eye(len(err)), err)
+                dq = j.T @ np.linalg.solve(j @ j.T + damping ** 2 * np.eye(len(err)), err)
                 stuck = free & (((q <= lo + 1e-9) & (dq < 0)) | ((q >= hi - 1e-9) & (dq > 0)))
                 if not stuck.any():
                     break
@@ -98,7 +111,16 @@ class InverseKinematics:
             biggest = float(np.max(np.abs(dq))) if len(dq) else 0.0
             if biggest > IK_MAX_STEP:
                 dq *= IK_MAX_STEP / biggest
-            q = servos.clamp(q + dq)
+            trial = servos.clamp(q + dq)
+            new = evaluate(trial)
+            if new[0] @ new[0] < err @ err:
+                q, (err, err_p, err_a) = trial, new
+                damping = max(IK_DAMPING, damping / 2)
+            else:
+                damping *= 4
+                if damping > IK_MAX_DAMPING:
+                    break  # no step lowers the error: as near as it gets
+                evaluate(q)  # back to q's kinematics for the next Jacobian
         return q, err_p, err_a
 
 

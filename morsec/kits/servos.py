@@ -55,16 +55,22 @@ class JointServos:
         values = np.asarray(values, dtype=float)
         return np.where(self.limited, np.clip(values, self.range[:, 0], self.range[:, 1]), values)
 
-    def command(self, setpoint, velocity=None) -> None:
-        """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given)."""
+    def command(self, setpoint, velocity=None, held: float = 0.0) -> None:
+        """Hold the joints at `setpoint` (moving at `velocity`, per joint, when given). `held`: how long (s)
+        this command stays, when the setpoint is where the joints must be at its end (a component moving
+        its setpoints tick by tick): the servos aim at the middle of that span, so that the joints get to
+        the setpoint at its end rather than overshooting it by half the step."""
         d = self.sim.data
         self.setpoint = bounded(setpoint, MAX_POSITION, "a joint setpoint (rad or m)").copy()
         # gravity and Coriolis forces, less what MuJoCo's gravity compensation already cancels (the arm of
         # a floating robot)
         ff = d.qfrc_bias[self.dof] - d.qfrc_gravcomp[self.dof]
+        aim = self.setpoint
         if velocity is not None:
-            ff += self.kv * bounded(velocity, MAX_SPEED, "a joint speed (rad/s or m/s)")
-        d.ctrl[self.actuators] = self.setpoint + ff / np.where(self.kp > 0, self.kp, 1.0)
+            velocity = bounded(velocity, MAX_SPEED, "a joint speed (rad/s or m/s)")
+            ff += self.kv * velocity
+            aim = aim - velocity * held / 2
+        d.ctrl[self.actuators] = aim + ff / np.where(self.kp > 0, self.kp, 1.0)
 
     def teleport(self, values, which=None) -> None:
         """Put joints at `values` at once, at rest, and hold them there: all of them, or those of the

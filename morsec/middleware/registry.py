@@ -4,10 +4,10 @@ built-in socket and text included (see pyproject.toml). A package adds one the s
 from __future__ import annotations
 
 from functools import lru_cache
-from importlib.metadata import entry_points
 
 from morsec.errors import MorsecError, did_you_mean
 from morsec.middleware.base import Middleware
+from morsec.resources import entry_points_of
 
 ENTRY_POINT_GROUP = "morsec.middlewares"
 
@@ -15,7 +15,7 @@ ENTRY_POINT_GROUP = "morsec.middlewares"
 @lru_cache(maxsize=1)
 def middlewares() -> dict[str, type[Middleware]]:
     found: dict[str, type[Middleware]] = {}
-    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+    for ep in entry_points_of(ENTRY_POINT_GROUP):
         cls = ep.load()
         if not (isinstance(cls, type) and issubclass(cls, Middleware)) or cls.name != ep.name:
             raise MorsecError(f"entry point {ep.name} = {ep.value}: must name a morsec.middleware.base.Middleware "

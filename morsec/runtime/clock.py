@@ -1,6 +1,6 @@
 """Simulated time and the two time strategies: best_effort follows the wall clock (times a scale),
 fixed_step runs as fast as the machine allows, except between two sleeps of a client that paces itself
-with `time sleep` (SleepHold). Time advances by exactly 1/frequency per frame."""
+with `time sleep`, or after a command (SleepHold). Time advances by exactly 1/frequency per frame."""
 
 from __future__ import annotations
 
@@ -119,43 +119,38 @@ class Periodic:
         return True
 
 
+# SleepHold's stand-in for the unknown sender of a message to an actuator stream
+STREAM_COMMANDS = "messages to actuator streams"
+
+
 class SleepHold:
     """fixed_step and the clients that pace themselves with `time sleep`: while such a client sleeps the
     loop runs as fast as it can; once its last running sleep has ended (`arm`), and until its next sleep
     starts (`release`), the loop runs as in best_effort (at the clock's scale), so that what the client
     does between two sleeps takes about as much simulated time as it would in best_effort: a round trip of
-    the network, not a hundred frames. Before that, it waits, without stepping, for the client's first
-    word after the sleep (`heard`: a request on its service connection, or a message on any actuator
-    stream, whose sender cannot be told), so that a command sent right after a sleep applies at the very
-    frame the sleep ended.
+    the network, not a hundred frames. A command from a client with no sleep running (`wake`), and a
+    message to an actuator stream, whose sender cannot be told (STREAM_COMMANDS), start the same phase,
+    `wait` at most: `publish(cmd); sleep(t)` then means what it means in best_effort.
 
-    Both phases are bounded in wall-clock time: the wait for the first word by `wait` (halved after each
-    wait of the same client that ran out but the first, down to `floor`: a client that reads a stream
-    after every sleep, which needs frames, does not pay it every time; whole again once it speaks first;
-    a client that reads a stream after some sleeps only keeps it whole), the whole by
-    `grace` from the end of the sleep. Then the loop runs as fast as it can again: a client that sleeps and
-    says nothing slows the others down for `grace`, no more. A client leaving (`forget`) ends it too."""
+    The phase is bounded in wall-clock time, by `grace` from the end of the sleep: then the loop runs as
+    fast as it can again; a client that sleeps and says nothing slows the others down for `grace`, no
+    more. A client leaving (`forget`) ends it too. A new connection to an actuator stream is waited for,
+    without stepping, until its first message arrives, `wait` at most (`stream_opened`)."""
 
-    def __init__(self, wait: float, floor: float, grace: float):
+    def __init__(self, wait: float, grace: float):
         self.wait = wait
-        self.floor = floor
         self.grace = grace
-        self.frozen: dict[Any, float] = {}  # client -> wall-clock deadline of the wait for its first word
         self.opened: dict[Any, float] = {}  # new actuator stream connection -> deadline of the wait for its message
         self.opened_quiet_until = 0.0  # wall clock: no new connection is waited for before (one ran out)
         self.awake: dict[Any, float] = {}  # client -> wall-clock deadline of its best_effort phase
-        self.misses: dict[Any, int] = {}  # client -> its waits in a row that ran out
         self.holds = 0  # for `time statistics`: sleeps that ended so
-        self.silent = 0  # ... waits for a first word that ran out
         self.overtime = 0  # ... best_effort phases that ran out
 
     def arm(self, client: Any) -> None:
         """The client's last running sleep ended."""
         if client is None or client in self.awake:
             return
-        now = _time.perf_counter()
-        self.frozen[client] = now + max(self.floor, self.wait / 2 ** max(0, self.misses.get(client, 0) - 1))
-        self.awake[client] = now + self.grace
+        self.awake[client] = _time.perf_counter() + self.grace
         self.holds += 1
 
     def wake(self, client: Any, seconds: float) -> None:
@@ -163,12 +158,6 @@ class SleepHold:
         next sleep starts, for `seconds` at most (a running phase may last longer, not shorter)."""
         if client is not None:
             self.awake[client] = max(self.awake.get(client, 0.0), _time.perf_counter() + seconds)
-
-    def heard(self, client: Any) -> None:
-        """The client spoke (None: someone whose service connection is unknown: every client)."""
-        for spoke in (list(self.frozen) if client is None else [client]):
-            if self.frozen.pop(spoke, None) is not None:
-                self.misses.pop(spoke, None)
 
     def stream_opened(self, connection: Any) -> None:
         """A client connected to an actuator stream: its first message is probably on its way (pymorse
@@ -181,41 +170,33 @@ class SleepHold:
             self.opened[connection] = now + self.wait
 
     def stream_heard(self, connection: Any) -> None:
-        """A message arrived on an actuator stream: whose it is cannot be told, so it is the first word of
-        every client waited for."""
+        """A message arrived on an actuator stream: a command, whose sender's sleep may follow."""
         self.opened.pop(connection, None)
-        self.heard(None)
+        self.wake(STREAM_COMMANDS, self.wait)
 
     def stream_closed(self, connection: Any) -> None:
         self.opened.pop(connection, None)
 
     def release(self, client: Any) -> None:
-        """The client's next sleep started."""
-        self.frozen.pop(client, None)
+        """The client's next sleep started (it may be the sender of the last stream command too)."""
         self.awake.pop(client, None)
+        self.awake.pop(STREAM_COMMANDS, None)
 
     def forget(self, client: Any) -> None:
         """The client left."""
-        self.release(client)
-        self.misses.pop(client, None)
+        self.awake.pop(client, None)
 
     def holding(self) -> float:
-        """Wall-clock seconds the loop still waits (without stepping) for a client's first word or a new
-        stream's first message; 0: none."""
-        if not self.frozen and not self.opened:
+        """Wall-clock seconds the loop still waits (without stepping) for a new stream's first message; 0:
+        none."""
+        if not self.opened:
             return 0.0
         now = _time.perf_counter()
-        for client, deadline in list(self.frozen.items()):
-            if deadline <= now:
-                del self.frozen[client]
-                self.misses[client] = min(self.misses.get(client, 0) + 1, 32)
-                self.silent += 1
         for connection, deadline in list(self.opened.items()):
             if deadline <= now:
                 del self.opened[connection]
                 self.opened_quiet_until = now + self.grace
-        waits = [*self.frozen.values(), *self.opened.values()]
-        return min(waits) - now if waits else 0.0
+        return min(self.opened.values()) - now if self.opened else 0.0
 
     def pacing(self) -> bool:
         """Whether some client is between two sleeps: the loop follows the wall clock."""
@@ -225,7 +206,8 @@ class SleepHold:
         for client, deadline in list(self.awake.items()):
             if deadline <= now:
                 del self.awake[client]
-                self.frozen.pop(client, None)
+                if client == STREAM_COMMANDS:  # no sleep followed a stream command: nothing to report
+                    continue
                 self.overtime += 1
                 log.info("a client did not ask for its next sleep within %g s after its time sleep ended: "
                          "the simulation runs as fast as it can again", self.grace)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import signal
 from pathlib import Path
 
@@ -10,6 +11,10 @@ from morsec.runtime.simulation import RunOptions, Simulation
 
 def run_simulation(build_dir: Path, options: RunOptions, duration: float | None) -> None:
     sim = Simulation(build_dir, options)  # a damaged build folder, or one from another morsec: one line
+    # what start-up built (modules, models, the simulation) lives as long as the process: kept out of the
+    # collector's generations, and the collector on again if `morsec run` turned it off while starting
+    gc.freeze()
+    gc.enable()
     previous = {sig: signal.signal(sig, lambda *_: sim.request_quit()) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         sim.announce()

@@ -1,13 +1,14 @@
 """The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
 
-Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps ->
-sensors due (compute, modify, publish) -> asynchronous services that completed."""
+Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps -> sensors
+due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any."""
 
 from __future__ import annotations
 
 import copy
 import logging
 import sys
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -16,7 +17,7 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
-from morsec.constants import PSEUDO_COMPONENTS, SLEEP_HOLD_FLOOR, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
+from morsec.constants import PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
 from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
@@ -30,6 +31,9 @@ from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_man
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+# wall-clock s between a frame's sensor messages and the answers to the sleeps that ended at it, so that a client
+# reading its sockets in any order (pymorse's polling thread) has the messages when it gets the answer
+ANSWER_GAP = 0.002
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 
 
@@ -138,9 +142,12 @@ class Simulation:
         except ValueError as err:  # a build folder written by hand, or by an older morsec
             raise RuntimeFailure(f"{build_dir}: {err}") from None
         # fixed_step: a client between two of its sleeps has the loop follow the wall clock (best_effort does)
-        self.hold = (SleepHold(SLEEP_HOLD_WAIT, SLEEP_HOLD_FLOOR, SLEEP_HOLD_GRACE)
+        self.hold = (SleepHold(SLEEP_HOLD_WAIT, SLEEP_HOLD_GRACE)
                      if self.clock.strategy == "fixed_step" else None)
         self.last_stream_input = 0.0  # simulated s: when the last message to an actuator stream arrived
+        self.last_stream_input_wall = -float("inf")  # ... and when, on the wall clock
+        # the frame's sensor messages, (streams, message) in the sensors' order, sent at the end of the frame
+        self.outbox: list[tuple[list, Any]] = []
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.quitting = False
         self.dynamics = True
@@ -180,7 +187,7 @@ class Simulation:
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
 
         self.time_services = TimeServices(self)
-        if self.hold is not None:  # fixed_step: a client's first word after its sleep, numbered requests
+        if self.hold is not None:  # fixed_step: commands start real-time phases, numbered requests
             self.requests.on_request.append(self.request_arrived)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
@@ -322,8 +329,7 @@ class Simulation:
     # ---------------------------------------------------------------- state changes from services
     def sleep_ended(self, request) -> None:
         """A client's last running `time sleep` ended: in fixed_step, until its next sleep starts, the loop
-        waits for its first word, then follows the wall clock (SleepHold); not while a lockstep client
-        paces the loop."""
+        follows the wall clock (SleepHold); not while a lockstep client paces the loop."""
         if self.hold is not None and not (self.sync is not None and self.sync.engaged):
             self.hold.arm(request.client)
 
@@ -333,16 +339,15 @@ class Simulation:
 
     def request_arrived(self, request) -> None:
         """fixed_step: a service request arrived, before it is handled."""
-        in_order = self.time_services.heard(request)
+        self.time_services.heard(request)
         if self.hold is not None:
-            if in_order:  # else a request the client numbered before it is still on its way: its first word
-                self.hold.heard(request.client)
             if request.component not in PSEUDO_COMPONENTS and not self.time_services.sleeping.get(request.client):
                 self.hold.wake(request.client, SLEEP_HOLD_WAIT)  # a command: its sleep may follow
 
     def stream_heard(self, connection) -> None:
         """A message arrived on an actuator stream connection (whose client's it is cannot be told)."""
         self.last_stream_input = self.clock.elapsed  # a sleep is never counted from before it
+        self.last_stream_input_wall = time.perf_counter()
         if self.hold is not None:
             self.hold.stream_heard(connection)
 
@@ -419,7 +424,6 @@ class Simulation:
         out.flush()
 
     def run(self, duration: float | None = None) -> None:
-        import time
         next_poll = 0.0
         try:
             while not self.quitting:
@@ -438,16 +442,20 @@ class Simulation:
                         self.poller.poll(0.01)
                         self._flush()
                         continue
-                elif self.hold is not None and (self.hold.frozen or self.hold.opened):
-                    held = self.hold.holding()  # a client's sleep ended: its first word applies at this frame
+                elif self.hold is not None and self.hold.opened:
+                    held = self.hold.holding()  # a new actuator stream: its first message applies at this frame
                     if held > 0:
                         self.poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
                         continue
-                self.step()
+                self.frame()
                 self._flush()
                 if self.view is not None:
                     self.view.sync()
+                if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
+                    self._pause(ANSWER_GAP)
+                self.time_services.wake()
+                self._flush()
                 self._wait(self._delay())
         finally:
             self.close()
@@ -464,6 +472,22 @@ class Simulation:
             self.poller.poll(min(delay, MAX_POLL_WAIT))
             self._flush()
             delay = self._delay()  # asked again: a request may have changed the time scale, a client slept
+
+    def _pause(self, seconds: float) -> None:
+        """Poll the sockets for `seconds` of wall time (requests are handled; no frame runs)."""
+        until = time.perf_counter() + seconds
+        while (left := until - time.perf_counter()) > 0 and not self.quitting:
+            self.poller.poll(left)
+            self._flush()
+
+    def frame(self) -> None:
+        """One frame: the physics and the components (step), then the sensors' messages sent. The answers
+        to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
+        client holding such an answer has had this frame's messages for a while, whatever order its polling
+        thread reads its sockets in."""
+        self.step()
+        self._send_sensor_messages()
+        self._flush()
 
     def step(self) -> None:
         m, d = self.model, self.data
@@ -490,11 +514,20 @@ class Simulation:
             now = self.clock.now()
             for comp in due:
                 self._tick_sensor(comp, now)
-        self.time_services.wake()
 
     def _flush(self) -> None:
         for mw in self.middlewares.values():
             mw.flush()
+
+    def _send_sensor_messages(self) -> None:
+        """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a
+        client whose sleep ended reads this frame's data with `last()`. Sensors created last send first, as
+        MORSE ran the logic of the object created last first: a client reading one stream with `get()` then
+        another with `last()` finds both."""
+        outbox, self.outbox = self.outbox, []
+        for streams, message in reversed(outbox):
+            for stream in streams:
+                stream.publish(message)
 
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
@@ -535,10 +568,8 @@ class Simulation:
         if not listening:
             return
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
-        if message is None:
-            return
-        for stream in listening:
-            stream.publish(message)
+        if message is not None:
+            self.outbox.append((listening, message))
 
     def close(self) -> None:
         view = getattr(self, "view", None)  # None: closed, or __init__ stopped before opening it

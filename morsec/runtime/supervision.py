@@ -138,11 +138,12 @@ class TimeServices:
     for a client whose request ids are numbers (pymorse, morsec.client: 0, 1, 2 ...), a sleep counts from
     the frame where the request numbered just before it arrived, if that was a command (a component's
     service) less than SLEEP_WITH_PREVIOUS (wall clock) before, and no actuator stream message came in
-    between: `rotate(...); sleep(1)` measures one second of the rotation. If that request has
+    between: `rotate(...); sleep(1)` measures one second of the rotation; a sleep that follows a message
+    to an actuator stream counts from that message. If that request has
     not arrived yet, the sleep starts when it does (within SLEEP_ORDER_WAIT): pymorse sends a component's
     service calls from a thread pool and `sleep` from the caller's thread, and `set_speed(1, 0); sleep(2)`
     sometimes reaches the simulation as sleep, then set_speed, tens of milliseconds later. And when a
-    client's last running sleep ends, the loop waits for it (runtime.clock.SleepHold)."""
+    client's last running sleep ends, the loop follows the wall clock until its next (runtime.clock.SleepHold)."""
 
     def __init__(self, sim):
         self.sim = sim
@@ -169,8 +170,7 @@ class TimeServices:
     def statistics(self) -> dict:
         hold = self.sim.hold
         return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers),
-                "sleep_holds": hold.holds if hold else 0, "sleep_holds_silent": hold.silent if hold else 0,
-                "sleep_holds_overtime": hold.overtime if hold else 0}
+                "sleep_holds": hold.holds if hold else 0, "sleep_holds_overtime": hold.overtime if hold else 0}
 
     @service
     def set_time_scale(self, value: float) -> bool:
@@ -188,19 +188,28 @@ class TimeServices:
         number = request_number(request.id)
         numbering = self.numbering.get(client)
         if number is None or numbering is None:
-            self._start(request, delay)
+            self._start(request, delay, since=self._after_stream_command(client))
         elif not numbering.all_before(number):  # the request before it is still on its way: wait for it
             self.deferred.setdefault(client, []).append(
                 (number, delay, request, _time.perf_counter() + SLEEP_ORDER_WAIT))
         else:
             previous = numbering.arrivals.get(number - 1)
             if previous is None or not previous[2] or _time.perf_counter() - previous[1] > SLEEP_WITH_PREVIOUS:
-                self._start(request, delay)
+                self._start(request, delay, since=self._after_stream_command(client))
             else:  # not before its previous sleep ended, nor before a message to an actuator stream (whose?)
                 self._start(request, delay, since=max(previous[0], self.woke.get(client, previous[0]),
                                                       self.sim.last_stream_input))
 
     sleep._morsec_concurrent = True
+
+    def _after_stream_command(self, client) -> float | None:
+        """fixed_step: a sleep that follows a message to an actuator stream by less than SLEEP_WITH_PREVIOUS
+        (wall clock) counts from the frame that message arrived at (`publish(cmd); sleep(t)` measures t of
+        the command), not before the client's previous sleep ended; None: from now."""
+        sim = self.sim
+        if sim.hold is None or _time.perf_counter() - sim.last_stream_input_wall > SLEEP_WITH_PREVIOUS:
+            return None
+        return max(sim.last_stream_input, self.woke.get(client, sim.last_stream_input))
 
     def _start(self, request, delay: float, since: float | None = None) -> None:
         """The sleep counts from `since` (simulated s: when the request before it arrived), else from now."""
@@ -247,7 +256,12 @@ class TimeServices:
                      "are taken as they arrive from now on", SLEEP_ORDER_WAIT)
             self._start_ready(client)
 
+    def ending(self) -> bool:
+        """Whether a sleep ends at this frame (its answer then leaves after the frame's wait)."""
+        return bool(self.sleepers) and self.sleepers[0][0] <= self.sim.clock.elapsed + 1e-9
+
     def wake(self) -> None:
+        """Answer the sleeps whose time has come."""
         if self.deferred:
             now = _time.perf_counter()
             for client in [c for c, waiting in self.deferred.items() if min(e[3] for e in waiting) <= now]:
@@ -261,7 +275,7 @@ class TimeServices:
                 if request.client in self.numbering:
                     self.woke[request.client] = self.sim.clock.elapsed
                 if self._awake(request.client):
-                    self.sim.sleep_ended(request)  # fixed_step: the loop waits for its next sleep
+                    self.sim.sleep_ended(request)  # fixed_step: real time until its next sleep
             else:
                 self.abandoned_sleepers -= 1
 

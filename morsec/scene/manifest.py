@@ -22,7 +22,7 @@ MANIFEST = "manifest.json"
 
 class Entry(BaseModel):
     # inf is a value components use (an orientation actuator's default speed): written as JSON's Infinity
-    model_config = ConfigDict(extra="forbid", frozen=True, ser_json_inf_nan="constants")
+    model_config = ConfigDict(extra="forbid", frozen=True, ser_json_inf_nan="constants", defer_build=True)
 
 
 class ComponentRef(Entry):

@@ -27,6 +27,7 @@ from morsec.constants import (
     FORBIDDEN_NAME_CHARS,
     MAX_TIME_SCALE,
     MIN_TIME_SCALE,
+    TimeStrategy,
 )
 from morsec.errors import did_you_mean
 from morsec.middleware.registry import middlewares, service_middlewares
@@ -80,7 +81,6 @@ TAGS_DESCRIPTION = ("game properties the type does not declare (MORSE's properti
                     "the semantic camera's tag, the thermometer's FireTag")
 LOCKS_DESCRIPTION = ("Blender's game lock_location_x/y/z and lock_rotation_x/y/z: world axes the body cannot move "
                      "along or turn about (a stiff damper on its free joint); no effect on a static body")
-TimeStrategy = Literal["best_effort", "fixed_step"]
 # the registered middlewares (morsec.middleware.registry): a package that adds one extends these; known at
 # run time only, so a type checker sees their names as strings
 if TYPE_CHECKING:

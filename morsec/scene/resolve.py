@@ -53,6 +53,25 @@ def add_environment_objects(data: Any, cat: Catalogue) -> Any:
     return {**data, "objects": objects + [copy.deepcopy(o) for o in held if o["name"] not in named]}
 
 
+def add_prop_defaults(data: Any, cat: Catalogue) -> Any:
+    """Before validation: each object entry completed with its prop type's `defaults` (a new mapping, as
+    add_environment_objects: the scene as written keeps only what it says)."""
+    import copy
+    if not isinstance(data, dict) or not isinstance(data.get("objects"), list):
+        return data
+    objects, changed = [], False
+    for obj in data["objects"]:
+        pid = cat.resolve("props", obj["type"]) if isinstance(obj, dict) and isinstance(obj.get("type"), str) else None
+        defaults = cat.get("props", pid).defaults if pid else {}
+        if defaults:
+            own = copy.deepcopy(defaults)
+            if isinstance(obj.get("properties"), dict):
+                obj = {**obj, "properties": {**own.get("properties", {}), **obj["properties"]}}
+            obj, changed = {**own, **obj}, True
+        objects.append(obj)
+    return {**data, "objects": objects} if changed else data
+
+
 def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     def fail(path: tuple, message: str) -> NoReturn:
         pos = smap.find(path) if smap else None

@@ -18,8 +18,8 @@ from pydantic_core import ErrorDetails
 from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
-from morsec.scene.resolve import add_environment_objects, add_robot_defaults, resolve
-from morsec.scene.schema import scene_model
+from morsec.scene.resolve import add_environment_objects, add_prop_defaults, add_robot_defaults, resolve
+from morsec.scene.schema import scene_model, types_named
 from morsec.scene.sourcemap import SourceMap
 
 VECTOR_KEYS = {"translate": "[x, y, z]", "rotate": "[x, y, z]", "location": "[x, y, z]",
@@ -28,13 +28,16 @@ VECTOR_KEYS = {"translate": "[x, y, z]", "rotate": "[x, y, z]", "location": "[x,
 
 
 def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
-    model = scene_model(cat)
     add_robot_defaults(data, cat)
     data = add_environment_objects(data, cat)
-    try:
-        scene = model.model_validate(data)
-    except ValidationError as err:
-        raise scene_error(err, data, smap, cat) from None
+    data = add_prop_defaults(data, cat)
+    try:  # the model of the types the scene names; any problem is reported by the whole model
+        scene = scene_model(cat, types_named(data)).model_validate(data)
+    except ValidationError:
+        try:
+            scene = scene_model(cat).model_validate(data)
+        except ValidationError as err:
+            raise scene_error(err, data, smap, cat) from None
     resolve(scene, cat, smap)
     scene._source = smap
     return scene

@@ -119,44 +119,83 @@ def test_motion_vw_diff_services_are_declared():
 
 # ---------------------------------------------------------------- steer_force
 
+BULLET_DAMPING = -math.log(1.0 - 0.42)  # the Hummer's linear damping, per second
+
+
 def test_steer_force_drives_brakes_and_steers_a_car(tmp_path):
     with simulate(scene("hummer", ["{name: sf, type: steer_force}"]), tmp_path) as sim:
         d = sim.sim.data
-        # forward: negative force, as MORSE; 4 x 0.4 x 3000 N on 2440 kg (+ wheel inertia) ~ 1.9 m/s^2
-        sim.command("r.sf", steer=0.0, force=-3000.0, brake=0.0)
-        sim.run_for(2.0)
-        pos, _ = sim.body_pose("r")
-        speed = d.qvel[0]
-        assert 3.0 < pos[0] < 4.2 and abs(pos[1]) < 0.05
-        assert 3.2 < speed < 4.0
-        # brake: it stops, and stays stopped
-        sim.command("r.sf", brake=50.0)
+        # MORSE's Hummer faces +x, its frame turned -pi/2 (its y axis is the car's forward)
+        assert sim.yaw("r") == pytest.approx(-math.pi / 2, abs=1e-6)
+        sim.run_for(2.0)  # settles on its suspension: 4 springs of 15 /s^2 per kg sag by g / 60 on average, the
+        # front ones (1.6 m ahead, against 2.3 m behind) more: the origin 0.5 + 0.5 + 0.3 - 0.1635 m up, less
+        # the nose's dip at the origin, 0.1635 (2 x 2.3 - 3.9) / 3.9 x 2.3 / 3.9 = 0.0058 m
+        start, _ = sim.body_pose("r")
+        assert start[2] == pytest.approx(1.1365 - 0.0058, abs=0.002)
+        # forward: negative force, as MORSE; 4 x 0.4 x 20 N on 10 kg slowed by Bullet's damping c:
+        # v = a / c (1 - exp(-c t)), x = a / c (t - (1 - exp(-c t)) / c)
+        sim.command("r.sf", steer=0.0, force=-20.0, brake=0.0)
         sim.run_for(3.0)
+        pos, _ = sim.body_pose("r")
+        a, c, t = 4 * 0.4 * 20.0 / 10.0, BULLET_DAMPING, 3.0
+        assert pos[0] - start[0] == pytest.approx(a / c * (t - (1 - math.exp(-c * t)) / c), rel=0.03)
+        assert d.qvel[0] == pytest.approx(a / c * (1 - math.exp(-c * t)), rel=0.03)
+        assert abs(pos[1] - start[1]) < 0.01
+        # the wheels roll with the ground: v / R about their axles (negative: the axle points right)
+        spin = sim.sim.model.joint("r/wheel_rear_left_joint")
+        before = d.qpos[spin.qposadr[0]]
+        sim.step()
+        rolled = math.remainder(d.qpos[spin.qposadr[0]] - before, 2 * math.pi) * 60.0
+        assert rolled == pytest.approx(-d.qvel[0] / 0.5, rel=0.05)
+        # brake: it stops within a few steps, and stays stopped
+        sim.command("r.sf", brake=10.0)
+        sim.run_for(0.5)
+        assert np.linalg.norm(d.qvel[:3]) < 0.05
+        sim.run_for(1.0)
         assert np.linalg.norm(d.qvel[:3]) < 0.05
         stopped, _ = sim.body_pose("r")
-        # steer left (positive): the car turns counter-clockwise, towards +y
+        # steer left (positive): the car turns counter-clockwise, towards +y; the front wheels show the angle
         yaw0 = sim.yaw("r")
-        sim.command("r.sf", steer=0.3, force=-2000.0)
+        sim.command("r.sf", steer=0.3, force=-10.0)
         sim.run_for(3.0)
         pos, _ = sim.body_pose("r")
         assert sim.yaw("r") - yaw0 > 0.3 and pos[1] - stopped[1] > 0.5
         steer = sim.sim.model.joint("r/steer_left_joint")
-        assert d.qpos[steer.qposadr[0]] == pytest.approx(0.3, abs=0.02)
+        assert d.qpos[steer.qposadr[0]] == pytest.approx(0.3, abs=1e-3)
         # steer right: clockwise
         yaw1 = sim.yaw("r")
-        sim.command("r.sf", steer=-0.3, force=-2000.0)
+        sim.command("r.sf", steer=-0.3, force=-10.0)
         sim.run_for(3.0)
         assert sim.yaw("r") - yaw1 < -0.3
 
 
-def test_steer_force_reverses_and_clamps_the_steering(tmp_path):
+def test_steer_force_reverses_and_steers_as_far_as_told(tmp_path):
+    """Positive force drives backwards; Bullet's steering has no stop: 1 rad turns the wheels 1 rad and the
+    car about a point on its rear axle's line (MORSE's steer_force test: a U-turn within 8 m)."""
     with simulate(scene("hummer", ["{name: sf, type: steer_force}"]), tmp_path) as sim:
-        sim.command("r.sf", steer=2.0, force=1500.0)  # positive force: backwards; steer beyond the hinges
+        sim.command("r.sf", steer=0.0, force=10.0)
         sim.run_for(1.5)
         pos, _ = sim.body_pose("r")
-        assert pos[0] < -0.3
+        assert pos[0] < -0.3 and abs(pos[1]) < 0.01
+        sim.command("r.sf", steer=0.0, force=0.0, brake=10.0)
+        sim.run_for(1.0)
+        start, _ = sim.body_pose("r")
+        sim.command("r.sf", steer=-1.0, force=-10.0, brake=0.0)
+        sim.run_for(1.0)
         steer = sim.sim.model.joint("r/steer_right_joint")
-        assert sim.sim.data.qpos[steer.qposadr[0]] == pytest.approx(0.6, abs=0.02)
+        assert sim.sim.data.qpos[steer.qposadr[0]] == pytest.approx(-1.0, abs=1e-3)
+        turned = yaw_change(sim, "r", 6.0)
+        pos, _ = sim.body_pose("r")
+        assert turned < -1.2  # to the right, and tightly
+        assert np.hypot(*(pos - start)[:2]) < 8.0
+
+
+def test_hummer_stands_on_its_wheels_without_steer_force(tmp_path):
+    """No steer_force, no suspension: the Hummer rests on its wheels, its origin as high as on its springs."""
+    with simulate(scene("hummer", ["{name: pose, type: pose}"]), tmp_path) as sim:
+        sim.run_for(1.0)
+        pos, _ = sim.body_pose("r")
+        assert pos[2] == pytest.approx(1.1365, abs=1e-3)
 
 
 # ---------------------------------------------------------------- force_torque, external_force, drag

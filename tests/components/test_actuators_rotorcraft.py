@@ -99,6 +99,29 @@ def test_rotorcraft_waypoint_holds_its_initial_point(quad, tmp_path):
         assert wp.get_status() == "Arrived"
 
 
+def test_rotorcraft_waypoint_target_marker_does_not_push_the_robot(quad, tmp_path):
+    """MORSE's rotorcraft_waypoint_testing: a `Sphere('wp_target')` is the default Target; the actuator puts
+    it on its goal, the robot's own position at first. MORSE's marker had NO_COLLISION; a colliding one
+    pushed the quadrotor up (2.1 m then 48 m for 1.81 m). It is made visual only: no contact, no ray."""
+    import mujoco
+
+    text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint}", z=1.81)
+    text += "objects:\n  - {name: wp_target, type: sphere, size: [1.0, 1.0, 1.0]}\n"
+    with simulate(text, tmp_path, **kw) as h:
+        start = h.body_pose("quad")[0]
+        h.run_for(2.0)
+        assert h.body_pose("quad")[0] == pytest.approx(start, abs=0.02)
+        assert h.body_pose("wp_target")[0] == pytest.approx(start, abs=1e-6)  # on the goal
+        m, d = h.sim.model, h.sim.data
+        marker = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "wp_target")
+        geoms = [g for g in range(m.ngeom) if m.geom_bodyid[g] == marker]
+        assert geoms and all(m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0 for g in geoms)
+        hit = np.array([-1], dtype=np.int32)
+        seen = np.array([0 if g in (2, 5) else 1 for g in range(mujoco.mjNGROUP)], dtype=np.uint8)  # as a laser
+        mujoco.mj_ray(m, d, start + [3.0, 0.0, 0.0], np.array([-1.0, 0.0, 0.0]), seen, 1, -1, hit)
+        assert hit[0] not in geoms  # rays see through it, as through MORSE's NO_COLLISION objects
+
+
 def test_rotorcraft_waypoint_flies_to_a_point_and_heading(quad, tmp_path):
     text, kw = flying(quad, "{name: motion, type: rotorcraft_waypoint}")
     with simulate(text, tmp_path, **kw) as h:

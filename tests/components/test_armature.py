@@ -46,24 +46,51 @@ def state(sim) -> np.ndarray:
 
 
 def test_kuka_lwr_kinematics(kuka):
-    """LWR 4+: 0.31 m base to shoulder (A2), 0.40 to the elbow (A4), 0.39 to the wrist (A6), 0.078 to the
-    flange (kuka_7); A1, A3, A5, A7 along the arm, A2, A4, A6 across."""
+    """MORSE's kuka_lwr model: bones 0.3105, 0.20, 0.20, 0.20, 0.19, 0.08, 0.13 m (base/armature_pose_testing.py
+    reads them with get_joints_length), so the LWR 4+'s 0.40 m shoulder (A2) to elbow (A4) and 0.39 m elbow to
+    wrist (A6), and the tip 1.3105 m above the base; A1, A3, A5, A7 along the arm, A2, A4, A6 across, a
+    negative A2 bending the arm towards +x (base/armature_testing.py)."""
     assert kuka.call("robot.arm", "get_joints") == KUKA
     assert kuka.call("robot.arm.pose", "get_joints") == KUKA
     d, m = kuka.sim.data, kuka.sim.model
     anchor = {j: d.xanchor[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, f"robot.arm/{j}")] for j in KUKA}
-    assert anchor["kuka_2"][2] == pytest.approx(0.31)
+    assert anchor["kuka_2"][2] == pytest.approx(0.3105)
     assert anchor["kuka_4"][2] - anchor["kuka_2"][2] == pytest.approx(0.40)
     assert anchor["kuka_6"][2] - anchor["kuka_4"][2] == pytest.approx(0.39)
-    assert kuka.body_pose("robot.arm/kuka_7")[0][2] - anchor["kuka_6"][2] == pytest.approx(0.078)
+    assert kuka.body_pose("robot.arm/kuka_7_tip")[0][2] == pytest.approx(1.3105)
     dofs = kuka.call("robot.arm", "get_dofs")
     assert [dofs[j] for j in KUKA] == [[False, False, True], [False, True, False]] * 3 + [[False, False, True]]
     assert kuka.call("robot.arm", "get_IK_limits", "kuka_2") == pytest.approx([-2.0944, 2.0944], abs=1e-4)
     lengths = kuka.call("robot.arm.pose", "get_joints_length")
-    assert [lengths[j] for j in KUKA] == pytest.approx([0.2, 0.2, 0.2, 0.2, 0.19, 0.078, 0.0])
-    # arm straight up, then A2 at 90 degrees: the rest of the arm (0.868 m) lies along +x
-    kuka.call("robot.arm", "set_rotation", "kuka_2", math.pi / 2)
-    np.testing.assert_allclose(kuka.body_pose("robot.arm/kuka_7")[0], [0.868, 0.0, 0.31], atol=1e-9)
+    assert [lengths[j] for j in KUKA] == pytest.approx([0.3105, 0.2, 0.2, 0.2, 0.19, 0.08, 0.13])
+    # arm straight up, then A2 at -90 degrees: the rest of the arm (1.0 m) lies along +x
+    kuka.call("robot.arm", "set_rotation", "kuka_2", -math.pi / 2)
+    np.testing.assert_allclose(kuka.body_pose("robot.arm/kuka_7_tip")[0], [1.0, 0.0, 0.3105], atol=1e-9)
+
+
+def test_children_are_placed_in_the_arm_frame_and_ride_on_its_end(tmp_path):
+    """MORSE places what is appended to an armature in the arm's frame and carries it on the arm's end: a
+    pose sensor at z 1.3105 (the tip, arm straight up) is at x 1.0, z 0.3105, pitched 90 degrees once A2 is
+    at -90 degrees (base/armature_testing.py, test_object_attach)."""
+    arm = """
+robots:
+  - name: robot
+    type: fake_robot
+    components:
+      - name: arm
+        type: kuka_lwr
+        components:
+          - {name: tip_pose, type: pose, translate: [0.0, 0.0, 1.3105]}
+"""
+    with simulate(arm, tmp_path) as sim:
+        sim.run_for(0.1)
+        tip = sim.data("robot.arm.tip_pose")
+        assert [tip["x"], tip["y"], tip["z"], tip["pitch"]] == pytest.approx([0.0, 0.0, 1.3105, 0.0], abs=1e-3)
+        sim.call("robot.arm", "set_rotation", "kuka_2", -math.pi / 2)
+        sim.run_for(0.1)
+        tip = sim.data("robot.arm.tip_pose")
+        assert [tip["x"], tip["y"], tip["z"], tip["pitch"]] == pytest.approx([1.0, 0.0, 0.3105, math.pi / 2],
+                                                                              abs=2e-3)
 
 
 def test_set_rotations_reaches_the_angles(kuka):
@@ -90,6 +117,18 @@ def test_rotate_at_the_given_speed(kuka, speed):
     assert status == "SUCCESS"
     assert at - start == pytest.approx(0.8 / expected_speed, abs=0.08)
     assert kuka.call("robot.arm.pose", "get_joint", "kuka_1") == pytest.approx(0.8, abs=0.01)
+
+
+def test_joint_moves_at_exactly_its_speed(kuka):
+    """MORSE steps a joint by speed / frequency each tick: after 1 s at 0.5 rad/s it is at 0.5 rad
+    (base/armature_testing.py allows 0.02 after a client's sleep(1)). The servos aim at the middle of each
+    tick's step: the joint is neither ahead (the setpoint held for a tick while the velocity feed-forward
+    pushes on) nor behind."""
+    client = kuka.client()
+    client.send("robot.arm", "rotate", "kuka_2", 1.0, 0.5)
+    for t in (0.5, 1.0, 1.5):
+        kuka.run_for(0.5)
+        assert kuka.call("robot.arm.pose", "get_joint", "kuka_2") == pytest.approx(0.5 * t, abs=0.002)
 
 
 def test_trajectory_timing(kuka):
@@ -134,46 +173,82 @@ def test_streamed_joint_targets_move_the_arm(kuka):
 
 
 IK_TARGET = "ik_target.robot.arm.kuka_7"
+DOWN = [-math.pi / 2, 0.0, 0.0]  # MORSE's IK target frame (Blender's bone: y along the arm) pointing down
+
+
+def tip(sim):
+    return sim.body_pose("robot.arm/kuka_7_tip")
 
 
 def test_place_and_move_ik_target(kuka):
     tol = 0.005  # DistanceTolerance
     assert kuka.call("robot.arm", "list_IK_targets") == [IK_TARGET]
     goal = np.array([0.5, 0.2, 0.6])
-    kuka.call("robot.arm", "place_IK_target", IK_TARGET, list(goal), [0.0, math.pi, 0.0], False)  # pointing down
+    kuka.call("robot.arm", "place_IK_target", IK_TARGET, list(goal), DOWN, False)
     kuka.run_for(0.5)
-    pos, rot = kuka.body_pose("robot.arm/kuka_7")
+    pos, rot = tip(kuka)
     assert np.linalg.norm(pos - goal) < tol
-    assert rot[:, 2] @ [0, 0, -1] > math.cos(0.01)
+    assert rot[:, 1] @ [0, 0, -1] > math.cos(0.01)  # the arm's end points down
 
     client = kuka.client()
     start = kuka.time
     status, _, at = client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [0.0, -0.4, -0.2]))
     assert status == "SUCCESS"
-    assert at - start == pytest.approx(math.hypot(0.4, 0.2) / 0.5, abs=0.2)  # IKLinearSpeed
-    pos, rot = kuka.body_pose("robot.arm/kuka_7")
+    # MORSE moves the target along each axis at IKLinearSpeed (0.5 m/s): 0.8 s for the 0.4 m of y
+    assert at - start == pytest.approx(0.4 / 0.5, abs=0.2)
+    pos, rot = tip(kuka)
     assert np.linalg.norm(pos - (goal + [0.0, -0.4, -0.2])) < tol
-    assert rot[:, 2] @ [0, 0, -1] > math.cos(0.01)  # no rotation asked: it kept pointing down
+    assert rot[:, 1] @ [0, 0, -1] > math.cos(0.01)  # no rotation asked: it kept pointing down
 
-    status, message, _ = client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [3.0, 0.0, 0.0]))
-    assert status == "FAILED" and "out of reach" in message
-    with pytest.raises(ValueError, match="out of reach"):
-        kuka.call("robot.arm", "place_IK_target", "kuka_7", [0.0, 0.0, 3.0], None, False)
     with pytest.raises(ValueError, match="IK target <kuka_8> does not exist for armature robot.arm .*kuka_7"):
         kuka.call("robot.arm", "place_IK_target", "kuka_8", [0.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="does not exist"):
         kuka.call("robot.arm", "place_IK_target", "ik_target.robot.other.kuka_7", [0.0, 0.0, 0.0])
 
 
+def test_ik_target_out_of_reach_leaves_the_arm_at_morse_compromise(kuka):
+    """MORSE's IK goes as near as it can and the services succeed; the target itself is where it was put,
+    and relative moves are relative to it (base/armature_testing.py: test_ik_immediate, test_ik_motion)."""
+    def tip_pose():
+        pos, rot = tip(kuka)
+        return [*pos, math.atan2(rot[0, 1], rot[2, 1])]  # the arm's pitch from vertical, towards +x
+
+    kuka.call("robot.arm", "place_IK_target", IK_TARGET, [0, 0, 2], None, False)  # above: straight up
+    kuka.run_for(0.5)
+    assert tip_pose() == pytest.approx([0.0, 0.0, 1.3105, 0.0], abs=1e-3)
+    # 1 m away at shoulder height, kept pointing up: the least-squares compromise, MORSE's numbers
+    kuka.call("robot.arm", "place_IK_target", IK_TARGET, [1, 0, 0.3105], None, False)
+    kuka.run_for(0.5)
+    assert tip_pose()[:3] == pytest.approx([0.778, 0.0, 0.363], abs=0.008)
+    assert tip_pose()[3] == pytest.approx(0.02, abs=0.003)  # tilted towards the target, as MORSE's
+    # the same place, the arm horizontal: exactly reachable, the arm stretched along +x
+    kuka.call("robot.arm", "place_IK_target", IK_TARGET, [1, 0, 0.3105], [math.pi / 2, -math.pi / 2, -math.pi],
+              False)
+    kuka.run_for(0.5)
+    assert tip_pose() == pytest.approx([1.0, 0.0, 0.3105, math.pi / 2], abs=2e-3)
+    client = kuka.client()
+    status, _, _ = client.wait(client.send("robot.arm", "move_IK_target", IK_TARGET, [0, 0, 2],
+                                           [math.pi / 2, 0.0, -math.pi], False))
+    assert status == "SUCCESS"  # out of reach, still a success, as MORSE's
+    assert tip_pose() == pytest.approx([0.0, 0.0, 1.3105, 0.0], abs=5e-3)
+    # relative to the target (at z 2), not to the arm's tip (at z 1.31)
+    status, _, _ = client.wait(client.send("robot.arm", "move_IK_target", IK_TARGET, [-1, 0, -1.6895]))
+    assert status == "SUCCESS"
+    assert tip_pose() == pytest.approx([-0.778, 0.0, 0.363, -0.02], abs=0.008)
+    status, _, _ = client.wait(client.send("robot.arm", "move_IK_target", IK_TARGET, [0, 0, 0],
+                                           [0, -math.pi / 2, 0]))  # a relative rotation, world frame
+    assert status == "SUCCESS"
+    assert tip_pose() == pytest.approx([-1.0, 0.0, 0.3105, -math.pi / 2], abs=5e-3)
+
+
 def test_ik_targets_have_morse_names(kuka):
-    """MORSE names an IK target `ik_target.<armature>.<bone>` (base/armature_testing.py); its link's name
+    """MORSE names an IK target `ik_target.<armature>.<bone>` (base/armature_testing.py); its bone's name
     alone (`kuka_7`) is accepted too."""
     assert kuka.call("robot.arm", "list_IK_targets") == ["ik_target.robot.arm.kuka_7"]
     for name in ("ik_target.robot.arm.kuka_7", "kuka_7"):
-        kuka.call("robot.arm", "place_IK_target", name, [0.5, 0.0, 0.6], [0.0, math.pi, 0.0], False)
+        kuka.call("robot.arm", "place_IK_target", name, [0.5, 0.0, 0.6], DOWN, False)
         kuka.run_for(0.3)
-        pos, _ = kuka.body_pose("robot.arm/kuka_7")
-        assert np.linalg.norm(pos - [0.5, 0.0, 0.6]) < 0.005
+        assert np.linalg.norm(tip(kuka)[0] - [0.5, 0.0, 0.6]) < 0.005
 
 
 def test_cancel_stops_the_arm_where_it_is(kuka):
@@ -189,6 +264,7 @@ def test_cancel_stops_the_arm_where_it_is(kuka):
 
 def test_generic_armature_revolute_and_prismatic_joints(tmp_path):
     with simulate(scene("armature"), tmp_path) as sim:
+        rest = sim.body_pose("robot.arm/extension")[0]
         assert sim.call("robot.arm", "get_joints") == ["shoulder_yaw", "shoulder_pitch", "elbow", "extension"]
         assert sim.call("robot.arm", "get_IK_limits", "extension") == pytest.approx([0.0, 0.2])
         client = sim.client()
@@ -209,11 +285,11 @@ def test_generic_armature_revolute_and_prismatic_joints(tmp_path):
         sim.run_for(0.3)
         np.testing.assert_allclose(list(sim.call("robot.arm.pose", "get_state").values()), [0.5, 0.3, 0.6, 0.2],
                                    atol=0.005)
-        # IK on a 4-joint arm: the position only
-        tip = sim.body_pose("robot.arm/extension")[0]
-        sim.call("robot.arm", "place_IK_target", "extension", [0.05, -0.05, -0.1])
+        # IK on a 4-joint arm: the position only; relative to the target, which is where the arm's end was
+        # at rest (the joint commands above did not move it), as MORSE's
+        sim.call("robot.arm", "place_IK_target", "extension", [0.1, -0.05, -0.2])
         sim.run_for(0.3)
-        assert np.linalg.norm(sim.body_pose("robot.arm/extension")[0] - (tip + [0.05, -0.05, -0.1])) < 0.005
+        assert np.linalg.norm(sim.body_pose("robot.arm/extension")[0] - (rest + [0.1, -0.05, -0.2])) < 0.005
 
 
 @pytest.mark.parametrize("xacro", ["actuators/armature/armature.urdf.xacro", "actuators/kuka_lwr/kuka_lwr.urdf.xacro"])
@@ -228,12 +304,12 @@ def test_arm_xacro_is_valid_urdf(xacro, tmp_path):
 
 
 def test_arm_pick_scene_picks_the_box_and_puts_it_down(tmp_path):
-    """The example scene: the gripper on the KUKA's flange, placed above the box by IK, grabs it, carries
-    it 0.3 m to the side and lets it go on the table."""
+    """The example scene: the gripper at the KUKA's tip, placed above the box by IK, grabs it, carries it
+    0.3 m to the side and lets it go on the table."""
     with simulate((ROOT / "scenes" / "arm_pick.yaml").read_text(), tmp_path) as sim:
         client = sim.client()
         sim.run_for(0.2)
-        sim.call("robot.arm", "place_IK_target", "kuka_7", [0.9, 0.0, 0.65], [0.0, math.pi, 0.0], False)
+        sim.call("robot.arm", "place_IK_target", "kuka_7", [0.9, 0.0, 0.65], DOWN, False)
         assert client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [0.0, 0.0, -0.15]))[0] == "SUCCESS"
         assert sim.call("robot.arm.gripper", "grab") == "box"
         assert client.wait(client.send("robot.arm", "move_IK_target", "kuka_7", [0.0, 0.3, 0.15]))[0] == "SUCCESS"

@@ -3,8 +3,6 @@ object follows it while held and falls where it is released."""
 
 from __future__ import annotations
 
-import math
-
 import mujoco
 import numpy as np
 import pytest
@@ -68,6 +66,34 @@ def test_pick_move_release_the_box_falls_where_released(tmp_path):
         np.testing.assert_allclose(sim.body_pose("other")[0][:2], [0.4, 0.0], atol=1e-3)  # left alone
 
 
+def test_a_held_object_goes_along_when_the_robot_is_teleported(tmp_path):
+    """MORSE's gripper_testing teleports the robot holding a tape: the object, parented to the gripper in MORSE,
+    goes along; here it is put back in the hand (a weld pulling it across 5 m in one step blew the physics up)."""
+    text = f"""
+environment: {{name: empty, time: {{strategy: fixed_step, relative: true}}}}
+robots:
+  - name: robot
+    type: atrv
+    components:
+      - {{name: gripper, type: gripper, translate: [0.7, 0.0, 0.3], rotate: [0.0, 1.5707963, 0.0]}}
+      - {{name: teleport, type: teleport}}
+objects:
+{box("box", 0.7)}"""
+    with simulate(text, tmp_path) as sim:
+        sim.run_for(0.3)
+        gripper = sim.component("robot.gripper")
+        assert sim.call("robot.gripper", "grab") == "box"
+        offset = sim.body_pose("box")[0] - gripper.position()
+        sim.command("robot.teleport", x=3.0, y=-4.0, z=0.5, yaw=0.0, pitch=0.0, roll=0.0)  # 5 m away, held up
+        for _ in range(30):  # in the hand at once, and held there
+            sim.step()
+            np.testing.assert_allclose(sim.body_pose("robot")[0][:2], [3.0, -4.0], atol=0.01)
+            np.testing.assert_allclose(sim.body_pose("box")[0] - gripper.position(), offset, atol=0.01)
+        assert sim.call("robot.gripper", "release") is True
+        sim.run_for(1.0)
+        np.testing.assert_allclose(sim.body_pose("box")[0], [3.7, -4.0, BOX / 2], atol=0.02)  # fell below
+
+
 def test_only_graspable_objects_in_the_cone_and_in_range_are_grabbed(tmp_path):
     objects = (box("plain", 0.0, graspable=False)  # right below, but not Graspable
                + box("aside", 0.0, 0.3)  # 0.32 m away, but 50 degrees off the gripper's axis (cone: 30)
@@ -77,7 +103,7 @@ def test_only_graspable_objects_in_the_cone_and_in_range_are_grabbed(tmp_path):
         assert sim.call("robot.gripper", "grab") is None
         assert sim.data("robot.gripper")["grab"] is False
     (tmp_path / "wide").mkdir()
-    with simulate(scene(objects, "{Angle: 2.0}"), tmp_path / "wide") as sim:  # a 115 degree cone sees it
+    with simulate(scene(objects, "{Angle: 115.0}"), tmp_path / "wide") as sim:  # a 115 degree cone sees it
         assert sim.call("robot.gripper", "grab") == "aside"
     (tmp_path / "range").mkdir()
     with simulate(scene(box("low", 0.0), height=0.7), tmp_path / "range") as sim:  # top 0.6 m below
@@ -125,4 +151,4 @@ def test_a_weld_per_dynamic_graspable_object_off_until_grab(tmp_path):
         welds = [mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_EQUALITY, i) for i in range(model.neq)]
         assert welds == ["robot.gripper/a", "robot.gripper/b"]
         assert not model.eq_active0.any() and not sim.sim.data.eq_active.any()
-        assert math.isclose(sim.component("robot.gripper").properties.Angle, math.radians(60))
+        assert sim.component("robot.gripper").properties.Angle == 60.0  # degrees, as MORSE

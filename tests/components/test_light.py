@@ -50,6 +50,27 @@ def test_light_toggles_and_the_camera_sees_it(tmp_path):
         assert brightness(sim) == pytest.approx(off)
 
 
+def test_a_lit_green_box_shows_its_own_green(tmp_path):
+    """MORSE's light_testing: a camera facing MORSE's GreenBox (0, 0.952, 0.019) from 1.3 m sees no bright
+    green without the lamp, and with it most of the face in pure green (R < 10, G > 170, B < 30): pictures
+    have no camera-following highlight (MuJoCo's headlight has no specular part, as Blender had none)."""
+    text = light_scene().replace(
+        "{name: wall, type: box, translate: [2.0, 0.0, 0.5], size: [0.2, 3.0, 1.0], color: [0.5, 0.5, 0.5]}",
+        "{name: block, type: box, translate: [1.8, 0.0, 0.6], size: [1.0, 1.0, 1.8], color: [0.0, 0.952, 0.019]}")
+    assert "block" in text
+
+    def green(sim) -> int:
+        sim.step()
+        img = sim.data("robot.camera")["image"].astype(int)
+        return int(((img[..., 0] < 10) & (img[..., 1] > 170) & (img[..., 2] < 30)).sum())
+
+    with simulate(text, tmp_path) as sim:
+        lit = green(sim)
+        sim.call("robot.lamp", "toggle", False)
+        assert green(sim) == 0
+    assert lit > 0.5 * 64 * 48  # the face fills most of the picture
+
+
 def test_light_properties_in_the_mjcf(tmp_path):
     props = "{emit: false, distance: 4.0, color: '(1, 0.5, 0)', size: 1.0, energy: 0.8}"
     with simulate(light_scene(props), tmp_path) as sim:

@@ -58,6 +58,8 @@ def test_set_pan_tilt_reaches_the_angles_at_the_speed(speed, tmp_path):
 
 
 def test_look_at_point_aims_the_tilt_body_and_the_camera_turns_with_it(tmp_path):
+    """The tilt body's x axis turns parallel to the direction from the unit's origin to the point (MORSE's
+    aim; ptu_testing: look_at_point(1, 0, z of the unit) gives a tilt of 0)."""
     with simulate(scene(), tmp_path) as sim:
         model = sim.sim.model
         tilt = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "robot.ptu/tilt")
@@ -70,7 +72,8 @@ def test_look_at_point_aims_the_tilt_body_and_the_camera_turns_with_it(tmp_path)
         assert status == "SUCCESS"
         sim.run_for(0.2)
         pos, rot = sim.body_pose("robot.ptu/tilt")
-        aim = (point - pos) / np.linalg.norm(point - pos)
+        origin, _ = sim.body_pose("robot.ptu")  # MORSE aims from the unit's origin, not from the tilt axis
+        aim = (point - origin) / np.linalg.norm(point - origin)
         assert math.degrees(math.acos(float(rot[:, 0] @ aim))) < 0.5
         pan, tilt_angle = sim.call("robot.ptu", "get_pan_tilt")
         assert pan == pytest.approx(math.atan2(2.0, 1.0), abs=0.01)  # left
@@ -86,12 +89,25 @@ def test_look_at_point_aims_the_tilt_body_and_the_camera_turns_with_it(tmp_path)
         np.testing.assert_allclose(view, rot[:, 0], atol=1e-9)
 
 
+def test_a_point_at_the_height_of_the_unit_is_looked_at_level(tmp_path):
+    """MORSE's ptu_testing: look_at_point at the unit's own height gives a tilt of 0 (the tilt axis is 0.09 m
+    above the unit's origin, which MORSE aimed from)."""
+    with simulate(scene(camera=False), tmp_path) as sim:
+        client = sim.client()
+        origin, _ = sim.body_pose("robot.ptu")
+        status, _, _ = client.wait(client.send("robot.ptu", "look_at_point", origin[0] + 1.0, origin[1], origin[2]))
+        assert status == "SUCCESS"
+        pan, tilt = sim.call("robot.ptu", "get_pan_tilt")
+        assert abs(pan) < 0.01 and abs(tilt) < 0.01
+
+
 def test_look_at_object_and_unknown_objects(tmp_path):
     with simulate(scene(camera=False), tmp_path) as sim:
         client = sim.client()
         status, _, _ = client.wait(client.send("robot.ptu", "look_at_object", "crate"))
         assert status == "SUCCESS"
-        pos, rot = sim.body_pose("robot.ptu/tilt")
+        pos, rot = sim.body_pose("robot.ptu")
+        _, rot = sim.body_pose("robot.ptu/tilt")
         aim = np.array([2.0, -1.0, 0.25]) - pos
         assert math.degrees(math.acos(float(rot[:, 0] @ aim / np.linalg.norm(aim)))) < 0.5
         status, message, _ = client.wait(client.send("robot.ptu", "look_at_object", "crat"))

@@ -103,17 +103,20 @@ def test_near_and_far_clip(tmp_path):
 
 
 def test_relative_poses_are_in_the_camera_frame(tmp_path):
-    """The robot turned 90 degrees left looks along world +y: an object at world (0.5, 3, 1.2) is 3 m ahead,
-    0.5 m to the right (y = -0.5) and 0.2 m up in the camera frame; its world yaw 0 is -90 degrees there."""
+    """MORSE's camera frame: x right, y down, z forward. The robot turned 90 degrees left looks along world
+    +y: an object at world (0.5, 3, 1.2) is 3 m ahead (z), 0.5 m to the right (x) and 0.2 m up (y = -0.2)
+    in the camera frame; the camera frame's axes are world (1, 0, 0), (0, 0, -1), (0, 1, 0), so the
+    object's world orientation (not turned) is their inverse there."""
     camera = "{name: sem, type: semantic_camera, properties: {relative: true}}"
     objects = [box("target", (0.5, 3.0, 1.2)), box("ahead_in_world", (3.0, 0.0, 1.0))]
     with simulate(scene(objects, camera, rotate=(0.0, 0.0, math.pi / 2)), tmp_path) as sim:
         sim.step(3)
         objects = seen(sim)
         assert set(objects) == {"target"}
-        assert objects["target"]["position"] == pytest.approx([3.0, -0.5, 0.2], abs=1e-9)
+        assert objects["target"]["position"] == pytest.approx([0.5, -0.2, 3.0], abs=1e-9)
         q = objects["target"]["orientation"]
-        assert [q[k] for k in "xyzw"] == pytest.approx([0.0, 0.0, -math.sin(math.pi / 4), math.cos(math.pi / 4)])
+        # rotation matrix rows (1, 0, 0), (0, 0, -1), (0, 1, 0): 90 degrees about x
+        assert [q[k] for k in "xyzw"] == pytest.approx([math.sin(math.pi / 4), 0.0, 0.0, math.cos(math.pi / 4)])
 
 
 def test_tag_selects_by_property_or_type(tmp_path):
@@ -184,3 +187,42 @@ robots:
     with simulate(moved, tmp_path) as sim:
         sim.step(2)
         assert seen(sim) == {}
+
+
+def test_builder_script_tags_an_environment_object_and_reads_it_in_the_camera_frame(tmp_path):
+    """A builder script reaches an object of the environment (indoors-1/boxes' RedBox) with
+    bpymorse.get_object and gives it the Type a `tag` camera tracks: the camera then sees it, not the
+    other boxes. `relative` poses are in MORSE's camera frame (x right, y down, z forward): RedBox
+    (world -7.5, 0, 0.965, not turned) seen from a camera 0.3 m ahead of and 0.762 m above an ATRV at
+    (-5, 0) facing -x (its origin rests 0.1 m above the floor: the camera at 0.862 m) is 2.2 m ahead and
+    0.103 m up; its orientation there is the camera frame's inverse."""
+    from morsec.app.project import build_scene
+    from morsec.component.catalogue import load_catalogue
+    from morsec.runtime.simulation import RunOptions, Simulation
+    from morsec.testing import Harness
+
+    script = tmp_path / "tagged.py"
+    script.write_text("""from morse.builder import *
+robot = ATRV()
+robot.translate(x=-5.0)
+robot.rotate(z=math.pi)
+camera = SemanticCamera()
+camera.properties(tag="Box", relative=True)
+camera.translate(x=0.3, z=0.762)
+robot.append(camera)
+env = Environment('indoors-1/boxes')
+bpymorse.properties(bpymorse.get_object('RedBox'), Type="Box")
+""")
+    build = build_scene(script, tmp_path / "build", load_catalogue())
+    sim = Harness(Simulation(build, RunOptions(strategy="fixed_step", output_dir=tmp_path, service_port=0,
+                                               port_base=0)))
+    try:
+        sim.run_for(0.3)
+        objects = seen(sim, "robot.camera")
+        assert set(objects) == {"RedBox"}  # BlueBox and GreenBox are tagged Object, not Box
+        red = objects["RedBox"]
+        assert red["type"] == "Box"
+        assert red["position"] == pytest.approx([0.0, 0.862 - 0.965, 2.2], abs=0.005)
+        assert [red["orientation"][k] for k in "xyzw"] == pytest.approx([0.5, 0.5, -0.5, 0.5], abs=1e-3)
+    finally:
+        sim.sim.close()

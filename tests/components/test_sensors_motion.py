@@ -130,3 +130,72 @@ robots:
     assert north["rotation"]["yaw"] == pytest.approx(math.radians(-20.0), abs=1e-9)
     assert scene["rotation"]["yaw"] == pytest.approx(math.pi / 2, abs=1e-9)
     assert north["angular_velocity"] == [0.0, 0.0, 0.0]
+
+
+def test_airspeed_reads_the_dynamic_pressure_along_its_axis(tmp_path):
+    """MORSE's airspeed: 0.5 rho v^2 (rho = 1.225) with v along the sensor's x axis; turned pi/2, it measures
+    the robot's sideways speed, the same both ways; Velocity (physics) and Position (displacement) agree."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: robot
+    type: morsy
+    components:
+      - {name: motion, type: motion_xyw}
+      - {name: side, type: airspeed, rotate: [0.0, 0.0, 1.5707963267948966], properties: {ComputationMode: Velocity}}
+      - {name: side_pos, type: airspeed, rotate: [0.0, 0.0, 1.5707963267948966],
+         properties: {ComputationMode: Position}}
+      - {name: ahead, type: airspeed}
+"""
+    with simulate(text, tmp_path) as h:
+        h.run_for(0.2)
+        assert list(h.data("robot.side")) == ["timestamp", "diff_pressure"]
+        assert h.data("robot.side")["diff_pressure"] == pytest.approx(0.0, abs=1e-3)
+        for vx, vy in ((1.0, 0.0), (0.0, 2.0), (0.0, -2.0)):
+            h.command("robot.motion", x=vx, y=vy, w=0.0)
+            h.run_for(0.5)
+            for name in ("robot.side", "robot.side_pos"):
+                assert h.data(name)["diff_pressure"] == pytest.approx(0.5 * 1.225 * vy * vy, abs=0.02), (name, vx, vy)
+            assert h.data("robot.ahead")["diff_pressure"] == pytest.approx(0.5 * 1.225 * vx * vx, abs=0.02)
+
+
+@pytest.mark.parametrize("angles", [(0.0, 2.5, 0.0), (0.0, -2.9, 0.0), (3.0, 0.0, 0.0), (0.0, 0.0, -3.0),
+                                    (0.4, 1.9, -0.3)])
+def test_euler_angles_are_chosen_as_blender_chose_them(angles, tmp_path):
+    """A rotation has two XYZ Euler triples; MORSE read the one Blender gave, the one with the smaller sum of
+    absolute angles: a pitch of 2.5 rad alone reads (roll 0, pitch 2.5, yaw 0), not (pi, 0.64, pi) (MORSE's
+    teleport_testing). Pose, gyroscope and odometry read the same triple."""
+    roll, pitch, yaw = angles
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: rmax
+    translate: [0.0, 0.0, 20.0]
+    components:
+      - {name: pose, type: pose}
+      - {name: gyro, type: gyroscope}
+      - {name: tp, type: teleport}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step()
+        h.command("r.tp", x=1.0, y=2.0, z=30.0, roll=roll, pitch=pitch, yaw=yaw)
+        h.step(2)
+        pose, gyro = h.data("r.pose"), h.data("r.gyro")
+    for reading in (pose, gyro):
+        assert (reading["roll"], reading["pitch"], reading["yaw"]) == pytest.approx(angles, abs=1e-6)
+
+
+@pytest.mark.parametrize("angles", [(0.0, 2.5, 0.0), (math.pi, 0.3, math.pi), (0.2, -1.8, 2.9),
+                                    (0.0, math.pi / 2, 0.7)])
+def test_matrix_to_euler_gives_the_smaller_triple_of_the_same_rotation(angles):
+    from morsec.kits.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
+
+    rot = quat_to_matrix(euler_to_quat(*angles))
+    got = matrix_to_euler(rot)
+    assert quat_to_matrix(euler_to_quat(*got)) == pytest.approx(rot, abs=1e-9)  # the same rotation
+    other = (math.remainder(got[0] + math.pi, 2 * math.pi), math.remainder(math.pi - got[1], 2 * math.pi),
+             math.remainder(got[2] + math.pi, 2 * math.pi))
+    assert sum(map(abs, got)) <= sum(map(abs, other)) + 1e-9
+    if abs(math.cos(angles[1])) < 1e-9:  # gimbal lock: Blender puts the rest in roll
+        assert got[2] == 0.0 and got[1] == pytest.approx(angles[1])

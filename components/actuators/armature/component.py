@@ -10,11 +10,16 @@ stream sends in (joints it leaves out keep their targets). A movement is over wh
 `AngleTolerance` (rad) or `DistanceTolerance` (m) of its target: a pending `rotate`, `translate`,
 `rotate_joints` or `translate_joints` then answers SUCCESS.
 
-Inverse kinematics uses MuJoCo's own Jacobians (`morsec.kits.ik`): damped least squares on `mj_jac` of the
-IK target's body (a link whose origin is the end effector), on a scratch MjData, joint limits clamped at
-each step.
-Subclasses (KukaLWR, the PR2's armatures) set `xacro`, `mount_body` (where appended components go),
-`ik_targets`, `joint_armature` and `joint_suffix`.
+Inverse kinematics, as MORSE's: an IK target is a pose of its own (MORSE's empty `ik_target.<arm>.<bone>`),
+at first the pose of its link (the end of the arm) with the arm at rest, kept in the arm's base frame;
+`place_IK_target` and `move_IK_target` move it (relative moves are relative to it, not to where the arm
+got), and the joints follow by inverse kinematics: MuJoCo's own Jacobians (`morsec.kits.ik`), damped least
+squares on `mj_jac` of the link, on a scratch MjData, joint limits clamped at each step. A target out of
+reach leaves the arm at the least-squares compromise between its position and its orientation (an angle
+error counting IK_ROT_WEIGHT m/rad), as MORSE's IK did, and the services succeed.
+Subclasses (KukaLWR, the PR2's armatures) set `xacro`, `mount_body` (where appended components go: they are
+placed in the arm's frame, joints at zero, and ride on that body), `ik_targets`, `joint_armature` and
+`joint_suffix`.
 """
 
 from __future__ import annotations
@@ -34,7 +39,11 @@ from morsec.kits.servos import JointServos
 
 log = logging.getLogger("morsec.actuators.armature")
 
-IK_GIVE_UP_S = 2.0  # after the end of a move_IK_target, seconds to reach the target before FAILED
+IK_SETTLE_S = 2.0  # after a move_IK_target's target got there, at most this long for the arm to settle
+# an orientation error of 1 rad weighs as much as IK_ROT_WEIGHT m of position error when a target is out of
+# reach: the compromise MORSE's Blender IK (iTaSC) found for the KUKA (base/armature_testing.py: a target 1 m
+# away at shoulder height, kept pointing up, leaves the tip at x 0.778, z 0.363, tilted 0.02 rad)
+IK_ROT_WEIGHT = 1.5
 
 
 class Armature(Actuator):
@@ -52,10 +61,11 @@ class Armature(Actuator):
     # read by the compiler: the arm's description and the body its children components are mounted in
     xacro: ClassVar[str] = "armature.urdf.xacro"
     mount_body: ClassVar[str | None] = "extension"
+    mount_in_own_frame: ClassVar[bool] = True  # children placed in the arm's frame (MORSE's armatures)
     joint_armature: ClassVar[dict[str, float]] = {"shoulder_yaw": 0.05, "shoulder_pitch": 0.05, "elbow": 0.05,
                                                   "extension": 0.2}
-    # links whose origin inverse kinematics can place (MORSE's IK targets)
-    ik_targets: ClassVar[tuple[str, ...]] = ("extension",)
+    # MORSE's IK targets: {name (MORSE's bone): link whose origin and frame the target is}
+    ik_targets: ClassVar[dict[str, str]] = {"extension": "extension"}
     # a suffix services may leave out of a joint's name (the PR2's "_joint": `head_pan` for `head_pan_joint`)
     joint_suffix: ClassVar[str] = ""
 
@@ -87,11 +97,14 @@ class Armature(Actuator):
         self._trajectory: dict | None = None
         self._ik_move: dict | None = None
         self._warned: set[str] = set()
+        self._base = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, self.name)
         self._ik_bodies = {}
-        for target in self.ik_targets:
-            body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/{target}")
+        self._ik_poses = {}  # {target: (position, rotation) in the arm's base frame}: MORSE's empties
+        for target, link in self.ik_targets.items():
+            body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/{link}")
             if body >= 0:
                 self._ik_bodies[target] = body
+                self._ik_poses[target] = self._to_base(self.sim.data.xpos[body], self.sim.data.xmat[body])
         self._ik = InverseKinematics(m, self.servos)
         self.servos.command(q)
 
@@ -152,9 +165,10 @@ class Armature(Actuator):
         p = self.properties
         return np.where(self.servos.prismatic, p.DistanceTolerance, p.AngleTolerance)
 
-    def _reached(self, targets) -> bool:
-        """Every joint within tolerance of its target, and settled (slower than 10 tolerances per second)."""
-        tol = self._tolerances()
+    def _reached(self, targets, scale: float = 1.0) -> bool:
+        """Every joint within tolerance (times `scale`) of its target, and settled (slower than 10 tolerances
+        per second)."""
+        tol = self._tolerances() * scale
         speed = np.abs(self.sim.data.qvel[self.servos.dof])
         return bool(np.all(np.abs(np.asarray(targets) - self.servos.positions()) < tol) and np.all(speed < 10 * tol))
 
@@ -177,7 +191,7 @@ class Armature(Actuator):
         speeds = np.array([self.joint_speed.get(n) or (p.LinearSpeed if pr else p.RotationSpeed)
                            for n, pr in zip(self.names, servos.prismatic)])
         delta = np.clip(targets - servos.setpoint, -speeds / self.frequency, speeds / self.frequency)
-        servos.command(servos.setpoint + delta, delta * self.frequency)
+        servos.command(servos.setpoint + delta, delta * self.frequency, held=1.0 / self.frequency)
         if self._reached(targets):
             self.joint_speed.clear()
             self.completed("SUCCESS")
@@ -314,7 +328,7 @@ class Armature(Actuator):
                 span = time - previous[0]
                 frac = (t - previous[0]) / span if span > 0 else 1.0
                 velocity = (values - previous[1]) / span if span > 0 else np.zeros_like(values)
-                servos.command(previous[1] + frac * (values - previous[1]), velocity)
+                servos.command(previous[1] + frac * (values - previous[1]), velocity, held=1.0 / self.frequency)
                 self._set_targets(values)
                 return
             previous = (time, values)
@@ -328,113 +342,136 @@ class Armature(Actuator):
     # ------------------------------------------------------------------ services: inverse kinematics
     @service
     def list_IK_targets(self) -> list[str]:
-        """The IK targets of this armature, MORSE's names: `ik_target.<armature>.<link>` (`ik_target.robot.arm.
-        kuka_7`), the links whose origin `place_IK_target` / `move_IK_target` place."""
-        return [self._ik_name(link) for link in sorted(self._ik_bodies)]
+        """The IK targets of this armature, MORSE's names: `ik_target.<armature>.<bone>` (`ik_target.robot.arm.
+        kuka_7`): the ends of the arm that `place_IK_target` / `move_IK_target` place."""
+        return [self._ik_name(target) for target in sorted(self._ik_bodies)]
 
-    def _ik_name(self, link: str) -> str:
-        return f"ik_target.{self.name}.{link}"
+    def _ik_name(self, target: str) -> str:
+        return f"ik_target.{self.name}.{target}"
 
-    def _ik_body(self, name: str) -> int:
-        """The body of an IK target named as list_IK_targets names it, or by its link alone (`kuka_7`)."""
+    def _ik_target(self, name: str) -> str:
+        """The target named as list_IK_targets names it, or by its bone alone (`kuka_7`)."""
         prefix = self._ik_name("")
-        link = name[len(prefix):] if name.startswith(prefix) else name
-        if link not in self._ik_bodies:
+        target = name[len(prefix):] if name.startswith(prefix) else name
+        if target not in self._ik_bodies:
             raise ValueError(f"IK target <{name}> does not exist for armature {self.name} "
                              f"(targets: {', '.join(self.list_IK_targets()) or 'none'})")
-        return self._ik_bodies[link]
+        return target
+
+    def _base_frame(self) -> tuple[np.ndarray, np.ndarray]:
+        d = self.sim.data
+        return d.xpos[self._base].copy(), d.xmat[self._base].reshape(3, 3).copy()
+
+    def _to_base(self, pos, xmat) -> tuple[np.ndarray, np.ndarray]:
+        origin, frame = self._base_frame()
+        return frame.T @ (np.asarray(pos) - origin), frame.T @ np.asarray(xmat).reshape(3, 3)
+
+    def _to_world(self, pos, rot) -> tuple[np.ndarray, np.ndarray]:
+        origin, frame = self._base_frame()
+        return origin + frame @ pos, frame @ rot
 
     def _ik_goal(self, name: str, translation, euler_rotation, relative: bool):
-        body = self._ik_body(name)
-        d = self.sim.data
-        pos, rot = d.xpos[body].copy(), d.xmat[body].reshape(3, 3).copy()
+        """(target, its pose now, its goal pose), world frame: MORSE's rules. Translation in the world frame,
+        added to the target's position when `relative`; rotation XYZ Euler in the world frame, turning the
+        target's orientation when `relative`; no rotation: the target keeps its orientation."""
+        target = self._ik_target(name)
+        pos, rot = self._to_world(*self._ik_poses[target])
         translation = np.asarray([float(v) for v in translation], dtype=float)
         if translation.shape != (3,):
             raise ValueError("translation must be [x, y, z]")
         goal_pos = pos + translation if relative else translation
-        # no rotation given: the target keeps its orientation if the arm can hold one (6 joints or more:
-        # a gripper pointing down stays pointing down), else only its position counts
-        goal_rot = rot if len(self.names) >= 6 else None
+        goal_rot = rot
         if euler_rotation:
             if len(euler_rotation) != 3:
                 raise ValueError("euler_rotation must be [rx, ry, rz]")
             delta = quat_to_matrix(euler_to_quat(*(float(v) for v in euler_rotation)))
             goal_rot = delta @ rot if relative else delta
-        return body, pos, rot, goal_pos, goal_rot
+        return target, pos, rot, goal_pos, goal_rot
+
+    def _orientation_counts(self) -> bool:
+        """An arm of 6 joints or more holds its target's orientation too; a shorter one, the position only."""
+        return len(self.names) >= 6
 
     def solve_ik(self, body: int, pos, rot=None, start=None, iterations: int = 200,
                  restarts: int = 0) -> tuple[np.ndarray, float, float]:
         """Joint values (within the limits) putting body `body`'s origin at `pos` (and its frame at `rot`),
-        from `start` (default: the current joints), within the tolerances: `morsec.kits.ik`. Returns
-        (joints, remaining distance m, remaining angle rad)."""
+        from `start` (default: the current joints), within the tolerances, else as near as the arm gets:
+        `morsec.kits.ik`. Returns (joints, remaining distance m, remaining angle rad)."""
         p = self.properties
         return self._ik.solve(self.sim.data, body, pos, rot, tolerances=(p.DistanceTolerance, p.AngleTolerance),
-                              start=start, iterations=iterations, restarts=restarts)
+                              start=start, iterations=iterations, restarts=restarts, rot_weight=IK_ROT_WEIGHT)
+
+    def _solve_target(self, target: str, pos, rot, **kwargs) -> tuple[np.ndarray, float, float]:
+        return self.solve_ik(self._ik_bodies[target], pos, rot if self._orientation_counts() else None, **kwargs)
 
     @service
     def place_IK_target(self, name: str, translation: list[float], euler_rotation: list[float] | None = None,
                         relative: bool = True) -> None:
-        """Put the IK target `name` at `translation` (world frame, m; added to its current position when
-        `relative`) and, if given, turn it by `euler_rotation` (XYZ Euler in the world frame, rad; from its
-        current orientation when `relative`), at once: the joints jump to the inverse kinematics solution.
-        If the target is out of reach the arm goes as near as it can and the call fails, saying how far."""
-        body, _, _, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
-        q, err_p, err_a = self.solve_ik(body, goal_pos, goal_rot, restarts=8)
+        """Put the IK target `name` at `translation` (world frame, m; added to the target's position when
+        `relative`) and, if given, turn it by `euler_rotation` (XYZ Euler in the world frame, rad; from the
+        target's orientation when `relative`), at once: the joints jump to the inverse kinematics solution.
+        A target out of reach leaves the arm as near as it gets (as MORSE's)."""
+        target, _, _, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
+        self._ik_poses[target] = self._to_base(goal_pos, goal_rot)
+        q, err_p, err_a = self._solve_target(target, goal_pos, goal_rot, restarts=8)
         self._stop_motions()
         self.joint_speed.clear()
         self._set_targets(q)
         self.servos.teleport(q)
-        self._check_reached(name, err_p, err_a)
+        self._log_reach(name, err_p, err_a)
 
-    def _check_reached(self, name: str, err_p: float, err_a: float) -> None:
+    def _log_reach(self, name: str, err_p: float, err_a: float) -> None:
         p = self.properties
         if err_p > p.DistanceTolerance or err_a > p.AngleTolerance:
-            raise ValueError(f"IK target {name} out of reach: the arm stops {err_p:.3f} m"
-                             f"{f' and {err_a:.3f} rad' if err_a > p.AngleTolerance else ''} away from it")
+            log.info("%s: IK target %s out of reach: the arm stops %.3f m and %.3f rad from it",
+                     self.name, name, err_p, err_a)
 
     @async_service(interruptible=True)
     def move_IK_target(self, name: str, translation: list[float], euler_rotation: list[float] | None = None,
                        relative: bool = True, linear_speed: float | None = None,
                        radial_speed: float | None = None) -> None:
-        """Move the IK target `name` to `translation` / `euler_rotation` (as `place_IK_target`) in a straight
-        line at `linear_speed` m/s (default IKLinearSpeed), turning at `radial_speed` rad/s (default
-        IKRotationSpeed); the joints follow by inverse kinematics. Answers SUCCESS when the target is
-        reached within DistanceTolerance (and AngleTolerance), FAILED if it is out of reach."""
-        body, pos, rot, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
+        """Move the IK target `name` to `translation` / `euler_rotation` (as `place_IK_target`) at
+        `linear_speed` m/s along each axis (default IKLinearSpeed), turning at `radial_speed` rad/s (default
+        IKRotationSpeed); the joints follow by inverse kinematics. Answers SUCCESS once the target is there
+        and the arm has settled (as near as it gets, if the target is out of reach)."""
+        target, pos, rot, goal_pos, goal_rot = self._ik_goal(name, translation, euler_rotation, relative)
         p = self.properties
         lspeed = abs(float(linear_speed)) if linear_speed else p.IKLinearSpeed
         rspeed = abs(float(radial_speed)) if radial_speed else p.IKRotationSpeed
-        duration = float(np.linalg.norm(goal_pos - pos)) / lspeed
-        if goal_rot is not None:
-            duration = max(duration, float(np.linalg.norm(rotation_error(goal_rot, rot))) / rspeed)
+        angle = float(np.linalg.norm(rotation_error(goal_rot, rot)))
         self._trajectory = None
         self.joint_speed.clear()
-        self._ik_move = {"name": name, "body": body, "pos": pos, "rot": rot, "goal_pos": goal_pos,
-                         "goal_rot": goal_rot, "t0": self.sim.clock.now(), "duration": duration}
+        self._ik_move = {"name": name, "target": target, "goal_pos": goal_pos, "rot": rot, "goal_rot": goal_rot,
+                         "t0": self.sim.clock.now(), "turn": angle / rspeed, "step": lspeed / self.frequency,
+                         "there": None}
 
     def _exec_ik_move(self) -> None:
-        move, servos, d = self._ik_move, self.servos, self.sim.data
-        elapsed = self.sim.clock.now() - move["t0"]
-        s = min(1.0, elapsed / move["duration"]) if move["duration"] > 0 else 1.0
-        pos = move["pos"] + s * (move["goal_pos"] - move["pos"])
-        rot = None if move["goal_rot"] is None else slerp(move["rot"], move["goal_rot"], s)
-        q, _, _ = self.solve_ik(move["body"], pos, rot, start=servos.setpoint, iterations=30)
-        servos.command(q, (q - servos.setpoint) * self.frequency)
+        """One tick: the target steps towards its goal (each axis at most the linear speed, MORSE's way; the
+        orientation turns along the shortest arc in angle / radial speed), the joints follow."""
+        move, servos = self._ik_move, self.servos
+        target = move["target"]
+        now = self.sim.clock.now()
+        pos, _ = self._to_world(*self._ik_poses[target])
+        tol = self.properties.DistanceTolerance
+        dist = move["goal_pos"] - pos
+        pos = move["goal_pos"].copy() if np.all(np.abs(dist) < tol) else \
+            pos + np.clip(dist, -move["step"], move["step"])
+        turned = (now - move["t0"]) / move["turn"] if move["turn"] > 0 else 1.0
+        rot = slerp(move["rot"], move["goal_rot"], min(1.0, turned))
+        self._ik_poses[target] = self._to_base(pos, rot)
+        there = bool(np.all(pos == move["goal_pos"])) and turned >= 1.0
+        # on the way, a few iterations a tick follow the target; once it is there, the solver runs to the end
+        q, _, _ = self._solve_target(target, pos, rot, start=servos.setpoint, iterations=200 if there else 30)
+        servos.command(q, (q - servos.setpoint) * self.frequency, held=1.0 / self.frequency)
         self._set_targets(q)
-        if s < 1.0:
+        if not there:
             return
-        body = move["body"]
-        err_p = float(np.linalg.norm(move["goal_pos"] - d.xpos[body]))
-        err_a = 0.0 if move["goal_rot"] is None else \
-            float(np.linalg.norm(rotation_error(move["goal_rot"], d.xmat[body].reshape(3, 3))))
-        p = self.properties
-        settled = bool(np.all(np.abs(d.qvel[servos.dof]) < 10 * self._tolerances()))
-        if err_p < p.DistanceTolerance and err_a < p.AngleTolerance and settled:
+        if move["there"] is None:
+            move["there"] = now
+        # the arm's end within a few mm of the solution: joints within a tenth of their tolerances
+        if self._reached(q, 0.1) or now - move["there"] > IK_SETTLE_S:
             self._ik_move = None
             self.completed("SUCCESS")
-        elif elapsed > move["duration"] + IK_GIVE_UP_S:
-            self._ik_move = None
-            self.completed("FAILED", f"IK target {move['name']} out of reach: the arm stops {err_p:.3f} m away")
 
     # ------------------------------------------------------------------ cancel
     def interrupt(self) -> None:

@@ -21,11 +21,12 @@ from morsec.component import Actuator, ComponentProperties, DataField, service
 from morsec.kits.geometry import matrix_to_quat
 
 log = logging.getLogger("morsec.actuators.gripper")
+JUMP = 0.05  # m: a held object this far from where the hand holds it is put back there
 
 
 class Gripper(Actuator):
     """Grabs the nearest object having the `Graspable` property whose bounding box comes within `Distance`
-    of the gripper's origin inside a cone of full aperture `Angle` around its +x axis, and carries it until
+    of the gripper's origin inside a cone of full aperture `Angle` (degrees) around its +x axis, and carries it until
     `release`. The fingers are visual only: nothing about the grasp is simulated but the holding."""
 
     short_descr = "Grab the nearest Graspable object in front of the gripper, and release it"
@@ -33,9 +34,9 @@ class Gripper(Actuator):
     frequency = 60.0
 
     class Properties(ComponentProperties):
-        Angle: float = Field(math.radians(60.0), gt=0, le=2 * math.pi,
-                             description="full aperture of the detection cone around the gripper's +x axis, rad "
-                             "(MORSE: 60 degrees)")
+        Angle: float = Field(60.0, gt=0, le=360.0,
+                             description="full aperture of the detection cone around the gripper's +x axis, "
+                             "degrees (MORSE's radar angle)")
         Distance: float = Field(0.5, gt=0, description="objects farther than this from the gripper's origin "
                                 "(nearest point of their bounding box) cannot be grabbed, m")
 
@@ -59,7 +60,7 @@ class Gripper(Actuator):
         """(distance, name) of the Graspable objects in the cone, nearest first."""
         m, d = self.sim.model, self.sim.data
         origin, axis = self.position().copy(), self.rotation()[:, 0].copy()
-        half = self.properties.Angle / 2
+        half = math.radians(self.properties.Angle) / 2
         found = []
         for name, body, _ in self.graspable:
             best, best_point = math.inf, d.xpos[body].copy()
@@ -112,10 +113,15 @@ class Gripper(Actuator):
             self._grab()
         elif not want and self.held is not None:
             self._release()
-        if self.held is not None and self.held[2] < 0:  # a static object: carried kinematically
-            _, body, _, rel_pos, rel_rot = self.held
+        if self.held is not None:
+            _, body, weld, rel_pos, rel_rot = self.held
             rot = self.rotation()
-            self.sim.place_body(body, self.position() + rot @ rel_pos, rot @ rel_rot)
+            pos = self.position() + rot @ rel_pos
+            # a static object is carried kinematically; a welded one is put back in the hand when the gripper
+            # jumped (its robot teleported: MORSE's object, parented to the gripper, went along), where the
+            # weld alone would pull it across the gap at once
+            if weld < 0 or float(np.linalg.norm(self.sim.data.xpos[body] - pos)) > JUMP:
+                self.sim.place_body(body, pos, rot @ rel_rot)
 
     # ------------------------------------------------------------------ services
     @service

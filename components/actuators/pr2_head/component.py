@@ -15,7 +15,7 @@ class PR2Head(Armature):
     builder_name = "PR2Head"
     xacro = "pr2_head.urdf.xacro"
     mount_body = "head_tilt_link"
-    ik_targets = ()
+    ik_targets: dict[str, str] = {}
     joint_suffix = "_joint"
     joint_armature = {"head_pan_joint": 0.05, "head_tilt_joint": 0.05}
 

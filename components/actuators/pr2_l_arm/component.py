@@ -19,7 +19,7 @@ class PR2LeftArm(Armature):
     builder_name = "PR2LeftArm"
     xacro = "pr2_l_arm.urdf.xacro"
     mount_body = "l_wrist_roll_link"
-    ik_targets = ("l_wrist_roll_link",)
+    ik_targets = {"l_wrist_roll_link": "l_wrist_roll_link"}
     joint_suffix = "_joint"
     joint_armature = {f"l_{j}_joint": 0.1 for j in JOINTS}
 

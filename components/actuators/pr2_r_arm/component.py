@@ -19,7 +19,7 @@ class PR2RightArm(Armature):
     builder_name = "PR2RightArm"
     xacro = "pr2_r_arm.urdf.xacro"
     mount_body = "r_wrist_roll_link"
-    ik_targets = ("r_wrist_roll_link",)
+    ik_targets = {"r_wrist_roll_link": "r_wrist_roll_link"}
     joint_suffix = "_joint"
     joint_armature = {f"r_{j}_joint": 0.1 for j in JOINTS}
 

@@ -14,7 +14,7 @@ class PR2Torso(Armature):
     builder_name = "PR2Torso"
     xacro = "pr2_torso.urdf.xacro"
     mount_body = "torso_lift_link"
-    ik_targets = ()
+    ik_targets: dict[str, str] = {}
     joint_suffix = "_joint"
     # the lift's drive (a ball screw) reflected on the joint, kg: steadies the servo under the upper body
     joint_armature = {"torso_lift_joint": 20.0}

@@ -45,8 +45,6 @@ class PTU(Actuator):
         if missing:
             raise ValueError(f"its model has no joint {', '.join(sorted(missing))}: rebuild the scene")
         self._pan, self._tilt = self.servos.index["pan"], self.servos.index["tilt"]
-        import mujoco
-        self._tilt_body = mujoco.mj_name2id(self.sim.model, mujoco.mjtObj.mjOBJ_BODY, f"{self.name}/tilt")
         self.servos.command(self.servos.positions())
 
     def reset(self):
@@ -109,10 +107,10 @@ class PTU(Actuator):
         self.local_data["pan"], self.local_data["tilt"] = self.aim(self.sim.data.xpos[body].copy())
 
     def aim(self, point: np.ndarray) -> tuple[float, float]:
-        """(pan, tilt) that point the tilt body's x axis at a world point: the tilt origin is on the pan axis,
-        so the direction to the point, in the unit's own (unpanned) frame, gives both angles."""
-        d = self.sim.data
-        v = self.rotation().T @ (point - d.xpos[self._tilt_body])
+        """(pan, tilt) that turn the tilt body's x axis parallel to the direction from the unit's origin to a
+        world point, as MORSE's (which aimed from the unit's origin, not from the tilt axis above it): that
+        direction in the unit's own (unpanned) frame gives both angles."""
+        v = self.rotation().T @ (point - self.position())
         if not np.any(v):
             raise ValueError("the point is at the centre of the unit: no direction to look at")
         return float(math.atan2(v[1], v[0])), float(math.atan2(-v[2], math.hypot(v[0], v[1])))

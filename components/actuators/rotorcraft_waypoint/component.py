@@ -26,6 +26,7 @@ from pydantic import Field
 
 from morsec.component import Actuator, DataField, RotorcraftProperties, async_service, service
 from morsec.kits.geometry import matrix_to_euler, normalize_angle
+from morsec.kits.markers import visual_marker
 
 log = logging.getLogger("morsec.actuators.rotorcraft_waypoint")
 
@@ -123,10 +124,9 @@ class RotorcraftWaypoint(Actuator):
         if not name:
             return
         if self._target is None:
-            found = next((o for o in self.sim.objects if o.name == name), None)
-            if found is None:
+            self._target = visual_marker(self.sim, name)  # MORSE's marker had NO_COLLISION: not in the way
+            if self._target is None:
                 return
-            self._target = found.body_id
         c, s = math.cos(yaw), math.sin(yaw)
         self.sim.place_body(self._target, goal, np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]))
 

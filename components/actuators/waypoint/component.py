@@ -30,6 +30,7 @@ from pydantic import Field
 
 from morsec.component import Actuator, ControlTypeProperties, DataField, async_service, service
 from morsec.kits.geometry import normalize_angle
+from morsec.kits.markers import visual_marker
 from morsec.modifiers.coordinates import POSITION_IN
 
 log = logging.getLogger("morsec.actuators.waypoint")
@@ -235,13 +236,12 @@ class Waypoint(Actuator):
         if not name:
             return
         if self._target is None:
-            found = next((o for o in self.sim.objects if o.name == name), None)
-            if found is None:
+            self._target = visual_marker(self.sim, name)  # MORSE's marker had NO_COLLISION: not in the way
+            if self._target is None:
                 if name not in self._warned:
                     self._warned.add(name)
                     log.warning("%s: Target %r is not a scene object", self.name, name)
                 return
-            self._target = found.body_id
         self.sim.place_body(self._target, goal, np.eye(3))
 
     # ------------------------------------------------------------------ services

@@ -71,12 +71,19 @@ class ArmaturePose(Sensor):
 
     @service
     def get_joints_length(self) -> dict[str, float]:
-        """{joint: length, m}: the length of the segment each joint moves, from it to the next joint (the
-        last one: 0, the chain ends on its axis, as the KUKA's tool flange)."""
-        anchors = self.sim.data.xanchor[self.joints]
+        """{joint: length, m}: the length of the segment each joint moves (MORSE's bone), from it to the next
+        joint; the last one, to the end of the arm (a link fixed on the last one, as the KUKA's tip), else 0."""
+        m, d = self.sim.model, self.sim.data
+        anchors = d.xanchor[self.joints]
         out = {}
         for i, name in enumerate(self.names):
-            out[name] = float(np.linalg.norm(anchors[i + 1] - anchors[i])) if i + 1 < len(self.names) else 0.0
+            if i + 1 < len(self.names):
+                out[name] = float(np.linalg.norm(anchors[i + 1] - anchors[i]))
+                continue
+            last = int(m.jnt_bodyid[self.joints[i]])
+            ends = [b for b in range(m.nbody) if int(m.body_parentid[b]) == last and int(m.body_jntnum[b]) == 0
+                    and (mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_BODY, b) or "").startswith(self.armature + "/")]
+            out[name] = float(np.linalg.norm(d.xpos[ends[0]] - anchors[i])) if ends else 0.0
         return out
 
 

@@ -8,7 +8,7 @@ import numpy as np
 from pydantic import Field
 
 from morsec.component import DataField, Sensor
-from morsec.kits.camera import INTRINSIC_MATRIX, CameraProperties
+from morsec.kits.camera import INTRINSIC_MATRIX, OPTICAL_TO_COMPONENT, CameraProperties
 from morsec.kits.geometry import matrix_to_quat
 
 SEEN_GROUPS = np.array([1, 1, 1, 0, 0, 0], dtype=np.uint8)  # what a camera renders: geom groups 0-2
@@ -25,8 +25,8 @@ class SemanticCamera(Sensor):
     from the camera to the centre of that bounding box hits that object first. The robot carrying the
     camera neither blocks the view nor is reported. Each seen object: `{name: its Label or name,
     description, type, position: [x, y, z], orientation: {x, y, z, w}}`, in the world frame, or in the
-    camera's frame (x forward, y left, z up) when `relative`. The camera looks along the component's +x.
-    Nothing is rendered."""
+    camera's frame when `relative`: MORSE's camera frame, x right, y down, z forward (the optical axis).
+    The camera looks along the component's +x. Nothing is rendered."""
 
     short_descr = "Names and poses of the tagged objects in the camera's field of view"
     builder_name = "SemanticCamera"
@@ -44,8 +44,8 @@ class SemanticCamera(Sensor):
         retrieve_depth: bool = Field(False, description=NO_EFFECT)
         retrieve_zbuffer: bool = Field(False, description=NO_EFFECT)
         shadows: bool = Field(False, description=NO_EFFECT)
-        relative: bool = Field(False, description="poses in the camera's frame (x forward, y left, z up) instead "
-                               "of the world's")
+        relative: bool = Field(False, description="poses in the camera's frame (MORSE's camera convention: x "
+                               "right, y down, z forward along the optical axis) instead of the world's")
         noocclusion: bool = Field(False, description="do not check that something hides the object: skip the "
                                   "occlusion ray (faster, less realistic)")
         tag: str = Field("Object", description="objects tracked: robots and objects whose property of this name "
@@ -56,7 +56,7 @@ class SemanticCamera(Sensor):
                   "one mapping per object seen, in scene order: {name (its Label property or its name), "
                   "description (Description property or ''), type (Type property or ''), position [x, y, z] m, "
                   "orientation {x, y, z, w} quaternion}: the object's origin and orientation in the world frame, "
-                  "or in the camera frame (x forward, y left, z up: the component's frame) when relative"),
+                  "or in the camera frame (x right, y down, z forward: MORSE's camera convention) when relative"),
         INTRINSIC_MATRIX,
     )
 
@@ -144,8 +144,9 @@ class SemanticCamera(Sensor):
                 continue
             pos = d.xpos[obj.body_id]
             orient = d.xmat[obj.body_id].reshape(3, 3)
-            if p.relative:
-                pos, orient = rot.T @ (pos - origin), rot.T @ orient
+            if p.relative:  # in the camera's optical frame, as MORSE's cameras
+                optical = rot @ OPTICAL_TO_COMPONENT
+                pos, orient = optical.T @ (pos - origin), optical.T @ orient
             w, x, y, z = matrix_to_quat(orient)
             props = obj.properties
             seen.append({

@@ -11,7 +11,9 @@ class Thermometer(Sensor):
     """Temperature at the sensor: a default temperature, raised by every fire source (a robot or object
     whose property named `FireTag` is set) within `Range`, each adding
     T_fire exp(-Alpha d), d being the distance from the sensor to the source's origin. A numeric value
-    of the tag property is that source's temperature; otherwise `FireTemperature` is used."""
+    of the tag property is that source's temperature; otherwise `FireTemperature` is used. A source with a
+    numeric `<FireTag>_Start` property (`Fire_Start`) burns from that simulated second on (a spreading
+    fire, as the one of land-1/rosace_1)."""
 
     short_descr = "Temperature, raised by nearby objects tagged Fire"
     builder_name = "Thermometer"
@@ -35,14 +37,21 @@ class Thermometer(Sensor):
         here = self.position()
         xpos = self.sim.data.xpos
         temperature = float(p.DefaultTemperature)
+        now = self.sim.clock.elapsed
         for source in self.sim.objects_with(p.FireTag):
+            start = source.properties.get(f"{p.FireTag}_Start")
+            if _number(start) and now < start:
+                continue  # not burning yet
             distance = float(np.linalg.norm(xpos[source.body_id] - here))
             if distance >= p.Range:
                 continue
             value = source.properties.get(p.FireTag)
-            numeric = isinstance(value, (int, float)) and not isinstance(value, bool)
-            temperature += (float(value) if numeric else p.FireTemperature) * math.exp(-p.Alpha * distance)
+            temperature += (float(value) if _number(value) else p.FireTemperature) * math.exp(-p.Alpha * distance)
         self.local_data["temperature"] = temperature
+
+
+def _number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 COMPONENT = Thermometer

@@ -177,6 +177,10 @@ class AbstractComponent:
     def _default_label(self) -> str:
         return self._emit_type() or type(self).__name__.lower()
 
+    def _morse_default_name(self) -> str:
+        """The name MORSE gives an object no variable names: its .blend object's (the builder class name)."""
+        return type(self).__name__
+
     def _fqn(self) -> str:
         parts = []
         node: AbstractComponent | None = self
@@ -935,6 +939,20 @@ class Plane(Mesh):
     _type = "Plane"
 
 
+class EnvironmentObject(_Object):
+    """An object of the environment's own (indoors-1/boxes' RedBox) that the script reached with
+    `bpymorse.get_object(name)`: the environment's definition, written in the scene under its name (which
+    replaces the environment's), so what the script sets on it (`bpymorse.properties(box, Type='Box')`)
+    applies to it."""
+
+    def __init__(self, definition: dict):
+        self._start(register=True)
+        definition = copy.deepcopy(definition)
+        self._type_name = definition.pop("type")
+        self.name = definition.pop("name")
+        self._raw.update(definition)
+
+
 class CatalogueProp(_Object):
     """A catalogue prop by its builder name (generated per catalogue)."""
 
@@ -945,27 +963,69 @@ class CatalogueProp(_Object):
 
 
 class PassiveObject(_Object):
-    """MORSE's PassiveObject(filename, prefix): a catalogue prop, else an asset file (not supported yet)."""
+    """MORSE's PassiveObject(filename, prefix, keep_pose): an object of a .blend file. Here a catalogue prop
+    named by `prefix` (or the file's stem), or an object of a catalogue environment
+    (`PassiveObject('environments/indoors-1/boxes', 'GreenBox')`), taken out of it with its shape, colour
+    and properties; placed at the origin (as MORSE resets the pose) unless `keep_pose`."""
 
     def __init__(self, filename="props/objects", prefix=None, keep_pose=False):
         self._start(register=True)
+        self._own_size: list | None = None  # the object's size at scale 1
+        self._blend_object = str(prefix) if prefix else Path(str(filename)).name.removesuffix(".blend")
+        what = f"PassiveObject({filename!r}" + (f", {prefix!r})" if prefix else ")")
+        if self._from_environment(str(filename), prefix, keep_pose, what):
+            return
         for candidate in (prefix, filename):
             if candidate:
                 found = self._lookup(candidate)
                 if found:
                     self._type_name = found
+                    self._own_size = self._session.catalogue.get("props", found).defaults.get("size")
                     return
         searched = asset_search_path(self._session.script)
         found_file = find_asset(str(filename), searched)
-        what = f"PassiveObject({filename!r}" + (f", {prefix!r})" if prefix else ")")
-        props = ", ".join(self._session.catalogue.names("props"))
+        cat = self._session.catalogue
+        props = ", ".join(cat.names("props"))
         if found_file:
             raise self._session.error(f"{what}: found {found_file}, but morsec cannot load Blender assets (.blend) "
                                       f"yet; use a catalogue prop ({props}) or a basic shape "
                                       "(Cube(), Cylinder(), Sphere())")
         shown = ", ".join(str(p) for p in searched) or "(nothing)"
-        raise self._session.error(f"{what}: no catalogue prop by that name ({props}) and no asset file found; "
-                                  f"searched {shown} (add folders with MORSE_RESOURCE_PATH)")
+        wanted = str(prefix or self._blend_object)
+        raise self._session.error(f"{what}: no catalogue prop by that name{did_you_mean(wanted, cat.names('props'))} "
+                                  f"(props: {props}) and no asset file found; searched {shown} (add folders with "
+                                  "MORSE_RESOURCE_PATH)")
+
+    def _from_environment(self, filename: str, prefix, keep_pose: bool, what: str) -> bool:
+        """`environments/<id>`: the object `prefix` of that catalogue environment (its `objects`)."""
+        text = filename.replace("\\", "/").removesuffix(".blend")
+        if not text.startswith("environments/"):
+            return False
+        cat = self._session.catalogue
+        eid = cat.resolve("environments", text.removeprefix("environments/"))
+        if eid is None:
+            return False  # not a catalogue environment: maybe a file
+        held = {o["name"]: o for o in cat.get("environments", eid).objects}
+        if not prefix or str(prefix) not in held:
+            names = ", ".join(held) or "none"
+            raise self._session.error(f"{what}: environment {eid!r} has no object {str(prefix or '')!r}"
+                                      f"{did_you_mean(str(prefix or ''), held)} (its objects: {names})")
+        entry = copy.deepcopy(held[str(prefix)])
+        self._type_name = entry.pop("type")
+        self._own_size = entry.get("size")
+        entry.pop("name", None)
+        pose = {k: entry.pop(k) for k in ("translate", "rotate") if k in entry}
+        if keep_pose:
+            entry.update(pose)
+        for key, value in entry.items():
+            self._put(key, value=value)
+        return True
+
+    def _base_size(self) -> list[float]:
+        return list(self._own_size) if self._own_size else super()._base_size()
+
+    def _morse_default_name(self) -> str:
+        return self._blend_object
 
 
 def asset_search_path(script: Path | None) -> list[Path]:

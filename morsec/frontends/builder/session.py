@@ -223,6 +223,9 @@ class Session:
         frame = self.caller_frame()
         if frame is not None:
             self.scan(frame)
+        # MORSE names objects after the script's variables when the Environment is constructed (and children at
+        # append): a robot or object created after it keeps its default name (its .blend object's)
+        node._after_environment = self.environment is not None
         self.nodes.append(node)
 
     def scan(self, frame_or_namespace) -> None:
@@ -232,7 +235,8 @@ class Session:
         for var, value in names.items():
             if var == "self" or not is_node(value) or value._kind == "environment":
                 continue
-            if value._session is self and value._parent is None and value._auto_name is None:
+            if (value._session is self and value._parent is None and value._auto_name is None
+                    and not getattr(value, "_after_environment", False)):
                 value._auto_name = var
 
     def name_from(self, frame, obj: Any) -> None:
@@ -248,6 +252,13 @@ class Session:
         """Final names: explicit or variable name, suffixed _001 ... when taken among siblings."""
         top = [n for n in self.nodes if n._parent is None and n._kind in ("robot", "object")]
         zones = [n for n in self.nodes if n._parent is None and n._kind == "zone"]
+        for node in top:
+            if node._explicit_name is None and node._auto_name is None and getattr(node, "_after_environment", False):
+                node._auto_name = node._morse_default_name()
+                self.warn(f"after_environment:{id(node)}",
+                          f"{type(node).__name__}() is created after Environment(...): as in MORSE, it is not named "
+                          f"after its variable but {node._auto_name!r} (create it before the Environment, or set "
+                          "its name)", node._position)
         _dedupe(top)
         _dedupe(zones)
         for node in self.nodes:

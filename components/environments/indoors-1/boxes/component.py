@@ -2,9 +2,9 @@ from morsec.component import Environment
 
 
 def _box(name: str, x: float, y: float, color: list[float]) -> dict:
-    # MORSE's boxes.blend: a 1 m cube scaled to 1.8 m high, with the game property Object = its name (what
-    # the semantic camera tracks, and reports under that name); at rest, as MORSE's dynamic boxes were,
-    # its top 1.865 m above the floor (MORSE's radar altimeter test: 13.14 m from 15 m)
+    # MORSE's boxes.blend: a 1 m cube scaled to 1.8 m high, of its material's colour, with the game property
+    # Object = its name (what the semantic camera tracks, and reports under that name); at rest, as MORSE's
+    # dynamic boxes were, its top 1.865 m above the floor (MORSE's radar altimeter test: 13.14 m from 15 m)
     return {"name": name, "type": "box", "translate": [x, y, 0.965], "size": [1.0, 1.0, 1.8], "color": color,
             "properties": {"Object": name}}
 
@@ -17,9 +17,9 @@ class IndoorsBoxes(Environment):
 
     short_descr = "Room with walls and boxes"
     objects = (
-        _box("RedBox", -7.5, 0.0, [0.8, 0.15, 0.12]),
-        _box("BlueBox", -3.5, -3.0, [0.15, 0.3, 0.8]),
-        _box("GreenBox", -6.5, 6.0, [0.2, 0.65, 0.25]),
+        _box("RedBox", -7.5, 0.0, [0.952, 0.115, 0.049]),
+        _box("BlueBox", -3.5, -3.0, [0.0, 0.346, 0.952]),
+        _box("GreenBox", -6.5, 6.0, [0.0, 0.952, 0.019]),
     )
 
 

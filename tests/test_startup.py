@@ -1,0 +1,168 @@
+"""What start-up does not pay for (issue 14): `morsec run` of a build folder imports nothing that only building
+needs and assembles only the `run` command; an up-to-date build is not compiled again, and anything a build
+is made from, changed, makes it compile. Each check runs a real `morsec` in a subprocess (a fresh
+interpreter: what the test process imported does not count)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from importlib.metadata import entry_points
+from pathlib import Path
+
+import pytest
+
+from morsec.app import buildcache
+from morsec.app.project import build_scene, prepare_build
+from morsec.cli import COMMANDS, command_of, make_app
+from morsec.resources import entry_points_of
+
+REPO = Path(__file__).resolve().parent.parent
+SCENE = """\
+environment: {name: empty, time: {strategy: fixed_step, frequency: 60}}
+robots:
+  - name: robot
+    type: atrv
+    components:
+      - {name: pose, type: pose, streams: [socket]}
+      - {name: motion, type: motion_vw, streams: [socket]}
+"""
+# what only building needs: the URDF and mesh libraries, templates, YAML, the front ends, the compiler,
+# the scene's own models and their validation, rich's terminal output
+BUILD_ONLY = ("yourdfpy", "trimesh", "scipy", "networkx", "lxml", "jinja2", "xacro", "yaml", "rich",
+              "morsec.frontends", "morsec.frontends.builder", "morsec.compiler", "morsec.scene.models",
+              "morsec.scene.validate", "morsec.scene.schema")
+
+AT_SCENE_INITIALIZED = """\
+import gc, json, sys
+from morsec.runtime.simulation import Simulation
+announce = Simulation.announce
+
+def report(self, out=sys.stdout):
+    announce(self, out)
+    print("MODULES " + json.dumps({"loaded": sorted(m for m in sys.argv[1].split(",") if m in sys.modules),
+                                   "gc": gc.isenabled()}), flush=True)
+
+Simulation.announce = report
+from morsec.cli import main
+main(sys.argv[2:])
+"""
+
+
+def run_python(code: str, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(REPO), os.environ.get("PYTHONPATH", "")]))
+    result = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True, timeout=120,
+                            env=env, cwd=cwd)
+    assert result.returncode == 0, result.stderr
+    return result
+
+
+@pytest.fixture
+def scene(tmp_path) -> Path:
+    path = tmp_path / "scene.yaml"
+    path.write_text(SCENE, encoding="utf-8")
+    return path
+
+
+def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
+    build = build_scene(scene, tmp_path / "build")
+    result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY), "run", str(build), "--duration", "0.05",
+                        "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
+    line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))
+    report = json.loads(line.removeprefix("MODULES "))
+    assert report["loaded"] == []
+    assert report["gc"], "the garbage collector must be on again once the simulation is initialized"
+    assert "SCENE INITIALIZED" in result.stdout and "EXITING SIMULATION" in result.stdout
+
+
+def test_a_command_line_assembles_its_command_only():
+    only_run = make_app(command_of(["run", "build/x", "--duration", "1"]))
+    assert [c.callback.__name__ for c in only_run.registered_commands] == ["run", "version"]
+    everything = make_app(command_of(["--help"]))
+    assert [c.callback.__name__ for c in everything.registered_commands] == [*COMMANDS, "version"]
+    assert command_of(["bogus"]) is None and command_of([]) is None
+
+
+def test_help_still_lists_every_command():
+    result = run_python("from morsec.cli import main; main(['--help'])")
+    for name in COMMANDS:
+        assert name in result.stdout
+
+
+def test_an_unchanged_scene_is_not_compiled_again(scene, tmp_path):
+    out = tmp_path / "build"
+    build_scene(scene, out)
+    before = {p: p.read_bytes() for p in out.rglob("*") if p.is_file()}
+    code = ("import sys\nfrom pathlib import Path\nfrom morsec.app.project import build_scene\n"
+            "build_scene(Path(sys.argv[1]), Path(sys.argv[2]))\n"
+            "print(sorted(m for m in ('morsec.compiler', 'morsec.frontends', 'mujoco', 'pydantic') "
+            "if m in sys.modules))")
+    assert run_python(code, str(scene), str(out)).stdout.strip() == "[]"
+    assert {p: p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
+
+
+def compiled(scene: Path, out: Path, run: bool = False) -> bool:
+    """Whether building `scene` into `out` (as `morsec build`, or as `morsec run` of the scene) compiled it."""
+    import morsec.compiler.build as compiler
+    calls = []
+    original = compiler.compile_scene
+    compiler.compile_scene = lambda *args: calls.append(args) or original(*args)
+    try:
+        (prepare_build if run else build_scene)(scene, out)
+    finally:
+        compiler.compile_scene = original
+    return bool(calls)
+
+
+@pytest.mark.parametrize("run", [False, True], ids=["build", "run"])
+def test_whatever_a_build_is_made_from_changed_compiles_it(tmp_path, run):
+    project = tmp_path / "project"
+    (project / "components" / "sensors").mkdir(parents=True)
+    (project / "morsec.toml").write_text("[project]\nname = 'p'\n", encoding="utf-8")
+    scene = project / "scene.yaml"
+    scene.write_text(SCENE, encoding="utf-8")
+    out = tmp_path / "out"
+    assert compiled(scene, out, run)
+    assert not compiled(scene, out, run)
+
+    scene.write_text(SCENE.replace("frequency: 60", "frequency: 50"), encoding="utf-8")  # the scene
+    assert compiled(scene, out, run)
+    assert not compiled(scene, out, run)
+
+    (project / "components" / "sensors" / "notes.txt").write_text("a file of the catalogue", encoding="utf-8")
+    assert compiled(scene, out, run)
+
+    (out / "stray.txt").write_text("not part of the build", encoding="utf-8")  # the folder's files
+    assert compiled(scene, out, run) and not (out / "stray.txt").exists()
+
+    xml = out / "scene.xml"
+    xml.write_text(xml.read_text(encoding="utf-8") + "<!-- edited -->\n", encoding="utf-8")
+    assert compiled(scene, out, run)
+    assert "edited" not in xml.read_text(encoding="utf-8")
+    assert not compiled(scene, out, run)
+
+
+def test_a_builder_script_is_always_run(tmp_path):
+    script = tmp_path / "scene.py"
+    script.write_text("from morse.builder import *\nrobot = ATRV()\nenv = Environment('empty')\n",
+                      encoding="utf-8")
+    assert buildcache.inputs_key(script) is None
+    out = tmp_path / "out"
+    assert compiled(script, out)
+    assert compiled(script, out)
+
+
+def test_without_a_writable_cache_every_build_compiles(scene, tmp_path, monkeypatch):
+    blocker = tmp_path / "not-a-folder"
+    blocker.write_text("", encoding="utf-8")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
+    out = tmp_path / "out"
+    assert compiled(scene, out)
+    assert compiled(scene, out)
+
+
+@pytest.mark.parametrize("group", ["morsec.middlewares", "morsec.components", "console_scripts", "pytest11"])
+def test_entry_points_are_those_importlib_finds(group):
+    assert entry_points_of(group) == sorted(entry_points(group=group), key=lambda e: e.name)
