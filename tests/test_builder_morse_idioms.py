@@ -268,7 +268,7 @@ def test_locked_bodies_hold_their_axis(tmp_path):
         assert sim.body_pose("falling")[0][2] < 0.5
         assert sim.body_pose("crate")[0][2] == pytest.approx(2.0, abs=1e-3)
     xml = (tmp_path / "build-scene" / "scene.xml").read_text()
-    assert '<velocity name="floating/lock_location_z" site="floating" refsite="morsec_world" gear="0 0 1 0 0 0"' in xml
+    assert '<velocity name="floating/lock_location_z" site="floating/centre_of_mass" refsite="morsec_world" gear="0 0 1 0 0 0"' in xml
     assert 'name="crate/lock_rotation_y"' in xml and "falling/lock" not in xml
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import copy
 import math
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -32,7 +32,7 @@ SENSOR_WIDTH_MM = 32.0
 STAT_EXTENT = 10.0  # MuJoCo's model size statistic, fixed (it scales clip planes, haze, default views)
 # base velocity servo gains per kg of robot: stiff enough to override wheel/ground friction when
 # turning (MORSE's motion actuators are kinematic); implicitfast integrates them stably
-SERVO_GAIN_PER_KG = 200.0  # Blender's default camera sensor width: fov = 2 atan(16 / focal)
+SERVO_GAIN_PER_KG = 200.0
 # a lock (Blender's lock_location_z ...) is a velocity damper on the body's free joint, in the world frame:
 # under gravity alone a locked body drifts at g / LOCK_GAIN_PER_KG (0.01 mm/s); implicitfast keeps it stable
 LOCK_GAIN_PER_KG = 1.0e6
@@ -104,6 +104,7 @@ class RobotBody:
     gravcomp: bool
     friction: float | None
     collides: bool
+    sites: list[dict] = field(default_factory=list)  # more sites on the base body: name, pos
 
 
 def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequency: float,
@@ -122,6 +123,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     objects = [_object(o, cat, env) for o in scene.objects]
     servos = [_servo(r, cat, robot_trees[r.name]) for r in scene.robots if _needs_servo(r, cat)]
     locks = _locks(scene, cat, robot_trees)
+    dampers = [d for r in scene.robots if (d := _dampers(r, cat, robot_trees[r.name]))]
     sections = _component_sections(scene, cat, env, robot_trees)
     zones = [{"name": z.name, "pos": z.translate, "half": [s / 2 for s in z.size]} for z in scene.zones]
 
@@ -139,7 +141,7 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
         extent=STAT_EXTENT,
         environment=env_xml, environment_assets=Markup("\n").join(a for a in asset_xml if a),
         meshes=[{"name": n, "file": f, "scale": sc} for n, (f, sc) in sorted(assets.meshes.items())],
-        robots=robots, objects=objects, zones=zones, servos=servos, locks=locks,
+        robots=robots, objects=objects, zones=zones, servos=servos, locks=locks, dampers=dampers,
         actuators=sections["actuator.xml.j2"], sensors=sections["sensor.xml.j2"],
         equalities=sections["equality.xml.j2"],
     ), mounts=_mounts(scene, cat))
@@ -202,8 +204,12 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     tree.quat = euler_to_quat(*(r + o for r, o in zip(robot.rotate, cls.origin_rotation)))
     floats = bool(robot.properties.NoGravity)  # its arms float with it
     components = [_component(c, robot.name, cat, env, floats) for c in robot.components]
+    sites = []
+    if not static and (_damped(robot, cat) or robot.locks):
+        sites.append({"name": mjcf_names.centre_of_mass(robot.name), "pos": mass_properties(tree)[1]})
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
-                     gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides)
+                     gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides,
+                     sites=sites)
 
 
 SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2", "equality.xml.j2")
@@ -248,21 +254,24 @@ def _needs_servo(robot, cat: Catalogue) -> bool:
 
 def _locks(scene, cat: Catalogue, robot_trees: dict[str, Link]) -> list[dict]:
     """A damper per locked axis of a moving robot or object: a velocity actuator from the body's site,
-    measured in the world frame (refsite), so that nothing moves it along (or turns it about) that axis."""
+    measured in the world frame (refsite), so that nothing moves it along (or turns it about) that axis.
+    A robot's acts at its centre of mass, as Bullet's locks (they hold the body's centre of mass, which is
+    a Blender robot's origin): held at its origin, below it, a robot held up by a lock would balance on a
+    point and topple."""
     out = []
     for robot in scene.robots:
         static = robot.physics_type == "static" or getattr(cat.get("robots", robot.type), "static", False)
         if robot.locks and not static:
             mass = robot.mass or sum(link.mass for link in robot_trees[robot.name].walk()) or 1.0
-            out += _lock_entries(robot.name, robot.locks, mass)
+            out += _lock_entries(robot.name, robot.locks, mass, site=mjcf_names.centre_of_mass(robot.name))
     for obj in scene.objects:
         if obj.locks and obj.dynamic:
             out += _lock_entries(obj.name, obj.locks, obj.mass)
     return out
 
 
-def _lock_entries(site: str, locks: list[str], mass: float) -> list[dict]:
-    return [{"name": mjcf_names.lock(site, axis), "site": site, "gear": LOCK_GEARS[axis],
+def _lock_entries(owner: str, locks: list[str], mass: float, site: str | None = None) -> list[dict]:
+    return [{"name": mjcf_names.lock(owner, axis), "site": site or owner, "gear": LOCK_GEARS[axis],
              "kv": LOCK_GAIN_PER_KG * mass} for axis in LOCK_GEARS if axis in locks]
 
 
@@ -270,6 +279,59 @@ def _servo(robot, cat: Catalogue, tree: Link) -> dict:
     mass = robot.mass or sum(link.mass for link in tree.walk()) or 1.0
     gain = SERVO_GAIN_PER_KG * mass
     return {"robot": robot.name, "kv_linear": gain, "kv_angular": gain}
+
+
+# ---- damping: Blender gave each rigid body of the game Bullet's velocity damping, v *= (1 - d) ** dt at each
+# step (the object's Physics panel: Damping, Rotation Damping; by default 0.04 and 0.1), so that a free robot
+# pushed then let go slows down. Here a damper per axis on the robot's base, at its centre of mass: a force
+# -m c v along x, y, z and a torque -I c w about them, c = -ln(1 - d) (the same loss per second), m and I the
+# robot's links' (at rest, in the base frame). An affine-bias actuator, which MuJoCo's implicitfast integrator
+# takes implicitly; its control is unused.
+
+def _damped(robot, cat: Catalogue) -> bool:
+    cls = cat.get("robots", robot.type)
+    static = robot.physics_type == "static" or cls.static
+    collides = robot.collision and robot.ghost is None and robot.physics_type != "no_collision" and cls.collision
+    return not static and collides and any(d > 0 for d in cls.damping)
+
+
+def _dampers(robot, cat: Catalogue, tree: Link) -> dict | None:
+    if not _damped(robot, cat):
+        return None
+    linear, angular = (-math.log(1.0 - min(max(d, 0.0), 0.999)) for d in cat.get("robots", robot.type).damping)
+    mass, _, inertia = mass_properties(tree)
+    kv = [linear * mass] * 3 + [angular * float(i) for i in np.diag(inertia)]
+    return {"robot": robot.name, "site": mjcf_names.centre_of_mass(robot.name),
+            "axes": [{"name": mjcf_names.damper(robot.name, axis), "gear": gear, "kv": k}
+                     for axis, gear, k in zip(mjcf_names.DAMPER_AXES, _GEARS, kv) if k > 0]}
+
+
+_GEARS = ("1 0 0 0 0 0", "0 1 0 0 0 0", "0 0 1 0 0 0", "0 0 0 1 0 0", "0 0 0 0 1 0", "0 0 0 0 0 1")
+
+
+def mass_properties(tree: Link) -> tuple[float, np.ndarray, np.ndarray]:
+    """(mass, centre of mass, 3x3 inertia about it) of a robot's links at rest (joints at zero), in the
+    frame of its base link."""
+    bodies = []  # (mass, centre in the base frame, inertia about it in the base frame)
+
+    def visit(link: Link, rot: np.ndarray, pos: np.ndarray) -> None:
+        if link.mass > 0:
+            ixx, iyy, izz, ixy, ixz, iyz = link.inertia
+            local = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+            bodies.append((link.mass, pos + rot @ link.inertial_pos, rot @ local @ rot.T))
+        for child in link.children:
+            visit(child, rot @ quat_to_matrix(child.quat), pos + rot @ child.pos)
+
+    visit(tree, np.eye(3), np.zeros(3))
+    mass = sum(b[0] for b in bodies)
+    if mass <= 0:
+        return 0.0, np.zeros(3), np.zeros((3, 3))
+    com = sum(m * c for m, c, _ in bodies) / mass
+    inertia = np.zeros((3, 3))
+    for m, c, i in bodies:
+        r = c - com
+        inertia += i + m * (float(r @ r) * np.eye(3) - np.outer(r, r))
+    return mass, com, inertia
 
 
 def _prepare_links(tree: Link, robot) -> None:

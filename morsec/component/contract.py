@@ -282,6 +282,11 @@ class Robot(Component):
     static: ClassVar[bool] = False  # True: no free joint (e.g. a fake robot holding sensors)
     joint_armature: ClassVar[dict[str, float]] = {}  # {URDF joint name: rotor inertia, kg m^2}
     collision: ClassVar[bool] = True
+    # Blender's game damping and rotation damping of the robot's body (its .blend's Physics panel; Blender's
+    # defaults 0.04 and 0.1): the fraction of its linear and angular velocity a free robot loses per second
+    # (Bullet: v *= (1 - damping) ** dt at each step). Given to robots that move under physics (not static,
+    # colliding); (0, 0): none
+    damping: ClassVar[tuple[float, float]] = (0.04, 0.1)
     # components every robot of this type carries unless the scene lists one of the same name, e.g.
     # ({"name": "motion", "type": "motion_vw"}, {"name": "pose", "type": "pose"}) — MORSE builder robots
     # that append their own actuators and sensors in __init__

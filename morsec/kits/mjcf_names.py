@@ -8,6 +8,8 @@ from __future__ import annotations
 
 SEPARATOR = "/"
 BASE_SERVO_AXES = ("vx", "vy", "wz")  # a robot's base velocity servos: forward, lateral, yaw
+# a robot's velocity dampers (Blender's damping): along and about its base frame's x, y, z
+DAMPER_AXES = ("x", "y", "z", "rx", "ry", "rz")
 DEFAULT_CAMERA = "morsec_default"  # the environment's camera (set_camera_location / set_camera_rotation)
 ZONE_PREFIX = "zone"
 WORLD_SITE = "morsec_world"  # a site at the world origin: the frame of the locks' dampers (refsite)
@@ -21,6 +23,16 @@ def part(owner: str, name: str) -> str:
 def base_servo(robot: str, axis: str) -> str:
     """One of a robot's base velocity servos (axis in BASE_SERVO_AXES)."""
     return part(robot, axis)
+
+
+def damper(robot: str, axis: str) -> str:
+    """One of a robot's velocity dampers (axis in DAMPER_AXES)."""
+    return part(robot, f"damping_{axis}")
+
+
+def centre_of_mass(robot: str) -> str:
+    """The site at a robot's centre of mass (its links', at rest), where its dampers act."""
+    return part(robot, "centre_of_mass")
 
 
 def lock(owner: str, axis: str) -> str:

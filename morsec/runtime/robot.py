@@ -232,6 +232,17 @@ class RobotHandle:
     def mass(self) -> float:
         return float(self.sim.model.body_subtreemass[self.body_id])
 
+    def centre_of_mass(self) -> np.ndarray:
+        """The whole robot's centre of mass, world frame, from its bodies' (d.xipos: right after a teleport
+        too, which updates the kinematics but not d.subtree_com)."""
+        if not hasattr(self, "_bodies"):
+            self._bodies = np.array(self.subtree(), dtype=int)
+            self._masses = self.sim.model.body_mass[self._bodies].copy()
+        total = float(self._masses.sum())
+        if total <= 0:
+            return self.sim.data.xipos[self.body_id].copy()
+        return self._masses @ self.sim.data.xipos[self._bodies] / total
+
     def weight(self) -> float:
         """Magnitude of the gravity force the robot feels, N (parts compensated by gravcomp excluded)."""
         m = self.sim.model
@@ -265,13 +276,19 @@ class RobotHandle:
         return res[3:].copy(), res[:3].copy()
 
     def apply_wrench(self, key: str, force, torque) -> None:
-        """Set the world-frame force and torque that `key` (an actuator's name) applies at the base body's
-        centre of mass; the contributions of several actuators add up. Stays applied until changed."""
+        """Set the world-frame force and torque that `key` (an actuator's name) applies to the robot, the
+        force through the whole robot's centre of mass (as MORSE's applyForce: a Blender robot is one body
+        whose origin is its centre of mass); the contributions of several actuators add up. Stays applied
+        until changed."""
         if not hasattr(self, "_wrenches"):
             self._wrenches: dict[str, np.ndarray] = {}
-        self._wrenches[key] = np.concatenate([bounded(force, MAX_FORCE, "a force (N)"),
-                                              bounded(torque, MAX_FORCE, "a torque (N m)")])
-        self.sim.data.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
+        d = self.sim.data
+        force = bounded(force, MAX_FORCE, "a force (N)")
+        torque = bounded(torque, MAX_FORCE, "a torque (N m)")
+        # MuJoCo applies xfrc_applied at the base body's own centre of mass: moved to the robot's
+        lever = self.centre_of_mass() - d.xipos[self.body_id]
+        self._wrenches[key] = np.concatenate([force, torque + np.cross(lever, force)])
+        d.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
 
 
 class _Follow:

@@ -16,6 +16,11 @@ from morsec.testing import simulate
 
 G = 9.81
 SUB_MASS = 470.0  # the submarine floats (NoGravity): a clean body to push around
+# Bullet's velocity damping of the submarine (Blender's defaults): the fraction of its velocity and turn rate
+# it loses per second; as a rate, c = -ln(1 - d)
+SUB_DAMPING = load_catalogue().get("robots", "submarine").damping
+SUB_RATE = -math.log(1.0 - SUB_DAMPING[0])
+SUB_TURN_RATE = -math.log(1.0 - SUB_DAMPING[1])
 
 
 def scene(robot: str, components: list[str], z: float = 0.0, yaw: float = 0.0, properties: str = "",
@@ -31,6 +36,12 @@ robots:
     {properties}
     components:
 {comps}"""
+
+
+def pushed(accel: float, seconds: float, rate: float) -> float:
+    """How far a body starting at rest goes (or turns) in `seconds` under a constant `accel` (m/s^2 or
+    rad/s^2) and a velocity damping `rate` (1/s): dv/dt = accel - rate v."""
+    return accel / rate * (seconds - (1.0 - math.exp(-rate * seconds)) / rate)
 
 
 def yaw_change(sim, name: str, seconds: float) -> float:
@@ -201,7 +212,7 @@ def test_force_torque_in_the_robot_frame(yaw, tmp_path):
         sim.command("r.ft", force=[100.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
         sim.run_for(2.0)
         pos, _ = sim.body_pose("r")
-        expected = 0.5 * 100.0 / SUB_MASS * 2.0 ** 2
+        expected = pushed(100.0 / SUB_MASS, 2.0, SUB_RATE)
         heading = np.array([math.cos(yaw), math.sin(yaw), 0.0])
         assert pos - start == pytest.approx(expected * heading, abs=0.01 * expected + 1e-3)
         assert abs(sim.yaw("r") - yaw) < 1e-3
@@ -213,7 +224,7 @@ def test_force_torque_torque_spins_the_robot(tmp_path):
         izz = sim.sim.robots[0].handle.inertia()[2, 2]
         sim.command("r.ft", force=[0.0, 0.0, 0.0], torque=[0.0, 0.0, 10.0])
         turned = yaw_change(sim, "r", 1.0)
-        assert turned == pytest.approx(0.5 * 10.0 / izz, rel=0.02)
+        assert turned == pytest.approx(pushed(10.0 / izz, 1.0, SUB_TURN_RATE), rel=0.02)
 
 
 def test_force_torque_in_the_actuator_frame_adds_the_lever_arm(tmp_path):
@@ -231,7 +242,7 @@ def test_force_torque_in_the_actuator_frame_adds_the_lever_arm(tmp_path):
         sim.command("r.ft", force=[100.0, 0.0, 0.0])
         sim.run_for(1.0)
         moved = sim.body_pose("r")[0] - start
-        assert moved[1] == pytest.approx(0.5 * 100.0 / SUB_MASS, rel=0.02) and abs(moved[0]) < 1e-3
+        assert moved[1] == pytest.approx(pushed(100.0 / SUB_MASS, 1.0, SUB_RATE), rel=0.02) and abs(moved[0]) < 1e-3
 
 
 def test_force_torque_at_the_origin_does_not_turn_the_robot(tmp_path):
@@ -249,6 +260,54 @@ def test_force_torque_at_the_origin_does_not_turn_the_robot(tmp_path):
         assert linear[0] > 1.0 and abs(linear[2]) < 1e-6
 
 
+def test_a_pushed_atrv_coasts_slowed_by_its_damping(tmp_path):
+    """MORSE's drag and external_force tests: an ATRV held at z = 1 (lock_location_z) and pushed by 100 N
+    speeds up at 5 m/s^2 (MORSE's ATRV weighs 20 kg); let go, it coasts, losing 2 % of its speed per
+    second (its Bullet damping), 4 % for a robot with Blender's default damping."""
+    comps = ["{name: ft, type: force_torque}"]
+    atrv = scene("atrv", comps, z=1.0, properties="locks: [location_z]")
+    damping = load_catalogue().get("robots", "atrv").damping[0]
+    assert damping == pytest.approx(0.02)
+    with simulate(atrv, tmp_path) as sim:
+        assert sim.sim.robots[0].handle.mass == pytest.approx(20.0)
+        sim.command("r.ft", force=[100.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.run_for(1.0)
+        rate = -math.log(1.0 - damping)
+        v = sim.sim.data.qvel[0]
+        assert v == pytest.approx(5.0 / rate * (1.0 - math.exp(-rate)), rel=1e-3)
+        sim.command("r.ft", force=[0.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.run_for(2.0)
+        assert sim.sim.data.qvel[0] / v == pytest.approx((1.0 - damping) ** 2, rel=1e-3)
+        _, rot = sim.body_pose("r")
+        assert np.allclose(rot, np.eye(3), atol=1e-6)  # pushed and held through its centre of mass
+    with simulate(submarine(["{name: ft, type: force_torque, properties: {RobotFrame: true}}"]), tmp_path,
+                  name="default") as sim:
+        sim.command("r.ft", force=[470.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.run_for(0.5)
+        sim.command("r.ft", force=[0.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
+        sim.step()
+        v = sim.sim.data.qvel[0]
+        sim.run_for(1.0)
+        assert SUB_DAMPING == (0.04, 0.1)
+        assert sim.sim.data.qvel[0] / v == pytest.approx(0.96, rel=1e-3)
+
+
+def test_a_locked_robot_is_held_at_its_centre_of_mass(tmp_path):
+    """Bullet's lock_location_z holds a body's centre of mass (a Blender robot's origin); held at its origin,
+    0.2 m below its centre of mass, a tilted ATRV held up in the air would balance on a point and topple."""
+    atrv = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - {name: r, type: atrv, translate: [0.0, 0.0, 1.0], rotate: [0.0, 0.1, 0.0], locks: [location_z]}
+"""
+    with simulate(atrv, tmp_path) as sim:
+        pitch = -math.asin(sim.body_pose("r")[1][2, 0])
+        assert pitch == pytest.approx(0.1, abs=1e-6)
+        sim.run_for(2.0)
+        pos, rot = sim.body_pose("r")
+        assert -math.asin(rot[2, 0]) == pytest.approx(0.1, abs=1e-3) and pos[2] == pytest.approx(1.0, abs=1e-3)
+
+
 def test_external_force_is_in_the_world_frame_and_adds_up(tmp_path):
     comps = ["{name: wind, type: external_force}",
              "{name: ft, type: force_torque, properties: {RobotFrame: true}}"]
@@ -257,7 +316,7 @@ def test_external_force_is_in_the_world_frame_and_adds_up(tmp_path):
         sim.command("r.wind", force=[100.0, 0.0, 0.0], torque=[0.0, 0.0, 0.0])
         sim.run_for(1.0)
         moved = sim.body_pose("r")[0] - start
-        assert moved == pytest.approx([0.5 * 100.0 / SUB_MASS, 0.0, 0.0], abs=2e-3)
+        assert moved == pytest.approx([pushed(100.0 / SUB_MASS, 1.0, SUB_RATE), 0.0, 0.0], abs=2e-3)
         # the robot's own thrusters push along its x axis (world y) while the wind pushes along world x:
         # against a wind along world -y of the same size, the two cancel
         sim.command("r.wind", force=[0.0, -100.0, 0.0])
@@ -273,11 +332,16 @@ def test_drag_gives_a_terminal_velocity(tmp_path):
         sim.command("r.ft", force=[100.0, 0.0, 0.0])
         sim.run_for(12.0)
         v = sim.sim.data.qvel[0]
-        assert v == pytest.approx(math.sqrt(100.0 / 100.0), rel=0.03)
-        # cut the thrust: drag slows it down, dv/dt = -C v^2 / m
+        # thrust = drag + damping: 100 = 100 v^2 + m c v
+        damping = SUB_MASS * SUB_RATE
+        terminal = (-damping + math.sqrt(damping ** 2 + 4 * 100.0 * 100.0)) / (2 * 100.0)
+        assert v == pytest.approx(terminal, rel=0.03)
+        # cut the thrust: drag and damping slow it down, dv/dt = -a v^2 - c v (a = C / m), which gives
+        # v(t) = c / ((c / v0 + a) exp(c t) - a)
         sim.command("r.ft", force=[0.0, 0.0, 0.0])
         sim.run_for(2.0)
-        expected = 1.0 / (1.0 / v + 100.0 / SUB_MASS * 2.0)
+        a, c = 100.0 / SUB_MASS, SUB_RATE
+        expected = c / ((c / v + a) * math.exp(c * 2.0) - a)
         assert sim.sim.data.qvel[0] == pytest.approx(expected, rel=0.03)
 
 

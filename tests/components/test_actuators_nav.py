@@ -374,6 +374,28 @@ def test_orientation_with_a_speed_turns_at_that_rate(tmp_path):
         assert pose(h)["yaw"] == pytest.approx(-1.0, abs=0.03)
 
 
+def test_orientation_rates_are_the_robots_angular_velocity(tmp_path):
+    """MORSE's Orientation sets each angle's rate as the robot's angular velocity about its own axis: an
+    RMax pitching and yawing at 0.5 rad/s reads (0, 0.5, 0.5) on its Attitude sensor (MORSE's
+    attitude_testing), not the -sin(pitch) 0.5 about x that turning the Euler angles exactly takes."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: robot
+    type: rmax
+    translate: [0.0, 0.0, 20.0]
+    components:
+      - {name: orientation, type: orientation, properties: {speed: 0.5}}
+      - {name: attitude, type: attitude}
+"""
+    with simulate(text, tmp_path) as h:
+        h.command("robot.orientation", yaw=1.0, pitch=1.0, roll=0.0)
+        h.run_for(0.25)  # the roll it drifts into on that path is still within the tolerance
+        attitude = h.data("robot.attitude")
+        assert attitude["rotation"]["pitch"] == pytest.approx(0.125, abs=0.01)
+        assert attitude["angular_velocity"] == pytest.approx([0.0, 0.5, 0.5], abs=0.003)
+
+
 def test_orientation_speed_accepts_inf_in_a_scene(tmp_path):
     text = atrv("{name: orientation, type: orientation, properties: {speed: .inf}}")
     with simulate(text, tmp_path) as h:

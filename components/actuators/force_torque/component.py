@@ -35,16 +35,14 @@ class ForceTorque(Actuator):
         base = self.robot.body_id
         if self.properties.RobotFrame:
             rot = d.xmat[base].reshape(3, 3)
-            f_world = rot @ force
-            lever = d.subtree_com[base] - d.xipos[base]
-            self.robot.apply_wrench(self.name, f_world, rot @ torque + np.cross(lever, f_world))
+            self.robot.apply_wrench(self.name, rot @ force, rot @ torque)
             return
         rot = self.rotation()
         f_world = rot @ force
         # MORSE's lever arm: from the robot's origin (in Blender the centre of mass of the robot's body) to
-        # the actuator; a ForceTorque at the origin pushes without turning the robot
-        # the force acts at the whole robot's centre of mass (MuJoCo applies it at the base body's own)
-        lever = self.position() - d.xpos[base] + d.subtree_com[base] - d.xipos[base]
+        # the actuator; a ForceTorque at the origin pushes without turning the robot (apply_wrench puts the
+        # force through the robot's centre of mass)
+        lever = self.position() - d.xpos[base]
         self.robot.apply_wrench(self.name, f_world, rot @ torque + np.cross(lever, f_world))
 
 

@@ -17,7 +17,8 @@ def _no_default(schema: dict) -> None:
 class Orientation(Actuator):
     """Turns the robot so that this actuator's frame has the commanded yaw, pitch and roll (MORSE's
     Orientation): instantly with the default infinite `speed`, else at no more than `speed` rad/s about
-    each angle, each stopping within `tolerance` of its goal."""
+    each angle, each stopping within `tolerance` of its goal. As MORSE's, the rate of each angle is set as
+    the robot's angular velocity about its own axis of the same name (roll: x, pitch: y, yaw: z)."""
 
     short_descr = "Set the orientation of the robot"
     builder_name = "Orientation"
@@ -59,13 +60,10 @@ class Orientation(Actuator):
                 rates.append(0.0)
             else:
                 rates.append(math.copysign(min(self.properties.speed, abs(diff) * self.frequency), diff))
-        # Euler angle rates -> angular velocity (world), R = Rz(yaw) Ry(pitch) Rx(roll)
-        cz, sz, cy, sy = math.cos(yaw), math.sin(yaw), math.cos(pitch), math.sin(pitch)
-        x_axis = np.array([cz * cy, sz * cy, -sy])  # Rz Ry ex
-        y_axis = np.array([-sz, cz, 0.0])  # Rz ey
-        world = rates[0] * x_axis + rates[1] * y_axis + rates[2] * np.array([0.0, 0.0, 1.0])
-        _, base_rot = self.robot.pose()
-        self.robot.apply_speed(self.properties.ControlType, [0.0, 0.0, 0.0], base_rot.T @ world, self.frequency)
+        # as MORSE's: the roll, pitch and yaw rates are the robot's angular velocity about its own x, y, z
+        # axes (exact for a yaw alone; pitched or rolled, the angles take a curved path to their goals,
+        # and an Attitude sensor reads these rates)
+        self.robot.apply_speed(self.properties.ControlType, [0.0, 0.0, 0.0], rates, self.frequency)
 
 
 COMPONENT = Orientation

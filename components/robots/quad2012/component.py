@@ -13,6 +13,7 @@ class QUAD2012(Quadrotor):
     short_descr = "Quadrotor for the stabilised (kinematic) flight model"
     builder_name = "QUAD2012"
     xacro = "../quadrotor/robot.urdf.xacro"
+    damping = (0.0, 0.0)  # no rigid body in MORSE's Bullet: nothing damps it
 
     class Properties(RobotProperties):
         NoGravity: bool = True
