@@ -28,6 +28,8 @@ from typing import Any
 
 import yaml
 
+from morsec.kits.ground_friction import ground_friction, slide
+
 MORSEC = Path(sys.executable).with_name("morsec")
 READY = "SCENE INITIALIZED"
 HOST = "127.0.0.1"
@@ -467,3 +469,10 @@ def read_lines(client: socket.socket, timeout: float = 5.0) -> list[bytes]:
         data += chunk
         client.settimeout(0.2)
     return data.splitlines()
+
+
+def friction_loss(robot_friction: float | None = None, tick: float = 1.0 / 60) -> float:
+    """m/s of the speed set at each tick that MORSE's ground friction takes from a ground robot
+    (morsec.kits.ground_friction: the same at any speed)."""
+    (mean, _), _ = slide(1.0, 0.0, ground_friction(robot_friction), 9.81, tick, tick)
+    return 1.0 - mean

@@ -17,7 +17,7 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
-from morsec.constants import PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
+from morsec.constants import MAX_SPEED, PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
 from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
@@ -631,7 +631,10 @@ class Stability:
 
     def recover(self, model, data) -> None:
         bad_roots = set(self.qpos_root[~_sane(data.qpos)].tolist())
-        bad_roots |= set(self.dof_root[~(_sane(data.qvel) & _sane(data.qacc))].tolist())
+        # after a warning, a body going faster than anything simulated goes is as bad as a NaN: left with such
+        # a velocity, MuJoCo's next step may crash outright (robots piled up at one place, MuJoCo 4.0)
+        wild = np.abs(data.qvel) > MAX_SPEED
+        bad_roots |= set(self.dof_root[~(_sane(data.qvel) & _sane(data.qacc)) | wild].tolist())
         for root in sorted(bad_roots):
             qpos = self.qpos_root == root
             previous = self.qpos[qpos]
