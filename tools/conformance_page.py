@@ -39,6 +39,16 @@ EXCEPTIONS = {
 # what needs a middleware morsec does not have yet
 ROS = "a ROS test: needs `morse.testing.ros` and the ROS middleware, which morsec does not have yet"
 EXCEPTIONS |= {f"robots/pr2/{name}.py": ROS for name in ("jointstate_ros", "torso_ros", "tuck_arms_ros")}
+# failures looked into, and why they remain (said after the first failure of the log)
+ANALYSED = {
+    "base/accelerometer_testing.py": "the test reads the frame a command took effect at right after `sleep(0.01)`, "
+    "once with `get()` (the message must come after the sleep's answer) and once with `last()` (it must have come "
+    "before); pymorse's polling thread reads its sockets in the order it opened them, and MORSE met both at "
+    "Blender's pace, its sensors' messages milliseconds apart",
+    "base/stabilized_quadrirotor_testing.py": "MORSE's own model (its Filt2 filter and the actuator's equations, "
+    "replayed at 60 Hz) gives x = 3.78 m at 3 s and 5.78 m at 4 s where the test expects 4.0 and 6.2 ± 0.2: "
+    "its figures hold about 7 % more motion than the model makes",
+}
 
 
 def run_suite(targets: list[str]) -> str:
@@ -99,6 +109,8 @@ def page(output: str, targets: list[str]) -> str:
     for name, ok, bad, first in rows:
         if bad:
             why = EXCEPTIONS.get(name) or reason(logs, name, first)
+            if name in ANALYSED:
+                why = f"{why}; why: {ANALYSED[name]}"
             lines.append(f"| `{name}` | {ok} | {bad} | {why.replace('|', '/')} |")
     lines += ["", "## Files that pass", ""]
     lines += [f"- `{name}` ({ok})" for name, ok, bad, _ in rows if not bad]
@@ -160,6 +172,7 @@ def main() -> None:
     parser.add_argument("targets", nargs="*", help="files or folders under the suite's tests/ (default: "
                         + " ".join(FOLDERS) + ")")
     parser.add_argument("--from-output", type=Path, help="the output of a run.py run instead of running it")
+    parser.add_argument("--save-output", type=Path, help="also write run.py's output there (for --from-output)")
     parser.add_argument("--check", action="store_true", help="write nothing; exit 1 when a file the page "
                         "records as passing fails (twice)")
     args = parser.parse_args()
@@ -167,6 +180,8 @@ def main() -> None:
     if args.check:
         sys.exit(check(targets))
     output = args.from_output.read_text() if args.from_output else run_suite(targets)
+    if args.save_output:
+        args.save_output.write_text(output)
     PAGE.write_text(page(output, targets) + "\n", encoding="utf-8")
     print(f"wrote {PAGE.relative_to(ROOT)}")
 

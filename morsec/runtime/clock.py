@@ -128,7 +128,8 @@ class SleepHold:
     loop runs as fast as it can; once its last running sleep has ended (`arm`), and until its next sleep
     starts (`release`), the loop runs as in best_effort (at the clock's scale), so that what the client
     does between two sleeps takes about as much simulated time as it would in best_effort: a round trip of
-    the network, not a hundred frames. A command from a client with no sleep running (`wake`), and a
+    the network, not a hundred frames. So does a client's first request, until its first sleep (`greet`).
+    A command from a client with no sleep running (`wake`), and a
     message to an actuator stream, whose sender cannot be told (STREAM_COMMANDS), start the same phase,
     `wait` at most: `publish(cmd); sleep(t)` then means what it means in best_effort.
 
@@ -143,15 +144,26 @@ class SleepHold:
         self.opened: dict[Any, float] = {}  # new actuator stream connection -> deadline of the wait for its message
         self.opened_quiet_until = 0.0  # wall clock: no new connection is waited for before (one ran out)
         self.awake: dict[Any, float] = {}  # client -> wall-clock deadline of its best_effort phase
+        self.greeted: set[Any] = set()  # clients whose first request came
+        self.slept: set[Any] = set()  # clients in awake because their last sleep ended
         self.holds = 0  # for `time statistics`: sleeps that ended so
         self.overtime = 0  # ... best_effort phases that ran out
 
     def arm(self, client: Any) -> None:
         """The client's last running sleep ended."""
-        if client is None or client in self.awake:
+        if client is None or client in self.slept:
             return
-        self.awake[client] = _time.perf_counter() + self.grace
+        self.awake[client] = max(self.awake.get(client, 0.0), _time.perf_counter() + self.grace)
+        self.slept.add(client)
         self.holds += 1
+
+    def greet(self, client: Any) -> None:
+        """The client's first request: until its first sleep starts, the loop follows the wall clock, `grace`
+        at most (what it does before its first sleep, read a stream, send a command, takes the simulated time
+        it would in best_effort)."""
+        if client is not None and client not in self.greeted:
+            self.greeted.add(client)
+            self.wake(client, self.grace)
 
     def wake(self, client: Any, seconds: float) -> None:
         """The client, with no sleep running, sent a command: the loop follows the wall clock until its
@@ -180,11 +192,14 @@ class SleepHold:
     def release(self, client: Any) -> None:
         """The client's next sleep started (it may be the sender of the last stream command too)."""
         self.awake.pop(client, None)
+        self.slept.discard(client)
         self.awake.pop(STREAM_COMMANDS, None)
 
     def forget(self, client: Any) -> None:
         """The client left."""
         self.awake.pop(client, None)
+        self.slept.discard(client)
+        self.greeted.discard(client)
 
     def holding(self) -> float:
         """Wall-clock seconds the loop still waits (without stepping) for a new stream's first message; 0:
@@ -206,8 +221,9 @@ class SleepHold:
         for client, deadline in list(self.awake.items()):
             if deadline <= now:
                 del self.awake[client]
-                if client == STREAM_COMMANDS:  # no sleep followed a stream command: nothing to report
+                if client not in self.slept:  # a command, or a first request, with no sleep after it
                     continue
+                self.slept.discard(client)
                 self.overtime += 1
                 log.info("a client did not ask for its next sleep within %g s after its time sleep ended: "
                          "the simulation runs as fast as it can again", self.grace)

@@ -342,6 +342,7 @@ class Simulation:
         """fixed_step: a service request arrived, before it is handled."""
         self.time_services.heard(request)
         if self.hold is not None:
+            self.hold.greet(request.client)
             if request.component not in PSEUDO_COMPONENTS and not self.time_services.sleeping.get(request.client):
                 self.hold.wake(request.client, SLEEP_HOLD_WAIT)  # a command: its sleep may follow
 
