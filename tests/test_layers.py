@@ -113,3 +113,61 @@ def test_component_folders_import_nothing_after_the_components_layer():
             if there is not None and there > components:
                 backwards.append(f"{path.relative_to(PACKAGE.parent)} imports {target} ({LAYERS[there][0]})")
     assert not backwards, "component folders importing past the components layer:\n" + "\n".join(backwards)
+
+
+def import_graph(paths) -> dict[str, set[str]]:
+    """module -> the modules of `paths` it imports (a name imported from a module counts as that module; a
+    package's __init__ importing its own modules is a re-export, not an edge)."""
+    names = {module_name(p): p for p in paths}
+    graph = {}
+    for module, path in names.items():
+        edges = set()
+        for target in imported(path, module):
+            while target and target not in names:
+                target = target.rpartition(".")[0]
+            if target and target != module and not (path.name == "__init__.py" and target.startswith(module + ".")):
+                edges.add(target)
+        graph[module] = edges
+    return graph
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The import circles: each strongly connected set of two modules or more, sorted."""
+    found, order, low, stack, counter = [], {}, {}, [], [0]
+
+    def visit(v):
+        order[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        for w in sorted(graph.get(v, ())):
+            if w not in order:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], order[w])
+        if low[v] == order[v]:
+            part = []
+            while True:
+                w = stack.pop()
+                part.append(w)
+                if w == v:
+                    break
+            if len(part) > 1:
+                found.append(sorted(part))
+
+    for v in sorted(graph):
+        if v not in order:
+            visit(v)
+    return found
+
+
+def test_no_module_imports_itself_round_a_circle():
+    """Imports run one way inside a layer too: two modules that import each other (even inside a function)
+    are one module split in two, or a piece in the wrong one."""
+    circles = cycles(import_graph(sorted(PACKAGE.rglob("*.py"))))
+    assert not circles, "import circles:\n" + "\n".join(" <-> ".join(c) for c in circles)
+
+
+def test_the_circle_check_sees_a_circle():
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []

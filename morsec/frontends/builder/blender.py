@@ -156,20 +156,5 @@ class GameSettings(BlenderPath):
         self._session.morse_only(self._owner, key, value, reason or self._reason, shown=shown)
 
 
-def environment_object(session, name: str) -> BlenderPath:
-    """`bpymorse.get_object(name)` for a name that no builder object has: an object the environment holds
-    (indoors-1/boxes' RedBox), which then becomes the script's to set; else an object of MORSE's .blend."""
-    env = session.environment
-    env_id = env._raw.get("name") if env is not None else None
-    cat = session.catalogue
-    resolved = cat.resolve("environments", env_id) if isinstance(env_id, str) else None
-    held = {o["name"]: o for o in cat.get("environments", resolved).objects} if resolved else {}
-    if name in held:
-        from morsec.frontends.builder.components import EnvironmentObject
-        return EnvironmentObject(held[name])._bpy_object
-    return BlenderPath(session, None, str(name), f"bpymorse.get_object({name!r})",
-                       f": {name!r} is an object of MORSE's Blender environment file, which morsec does not load")
-
-
 def _variable(node) -> str:
     return node.basename or type(node).__name__.lower()

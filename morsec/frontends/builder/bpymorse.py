@@ -15,7 +15,8 @@ from __future__ import annotations
 from typing import Any
 
 from morsec.frontends.builder import session as _session
-from morsec.frontends.builder.blender import BlenderObject, BlenderPath, environment_object
+from morsec.frontends.builder.blender import BlenderObject, BlenderPath
+from morsec.frontends.builder.components import EnvironmentObject
 
 bpy = None  # MORSE's module exposed it (None outside Blender), as here
 
@@ -97,3 +98,17 @@ def __getattr__(name: str):
 
     blender_call.__name__ = name
     return blender_call
+
+
+def environment_object(session, name: str) -> BlenderPath:
+    """`bpymorse.get_object(name)` for a name that no builder object has: an object the environment holds
+    (indoors-1/boxes' RedBox), which then becomes the script's to set; else an object of MORSE's .blend."""
+    env = session.environment
+    env_id = env._raw.get("name") if env is not None else None
+    cat = session.catalogue
+    resolved = cat.resolve("environments", env_id) if isinstance(env_id, str) else None
+    held = {o["name"]: o for o in cat.get("environments", resolved).objects} if resolved else {}
+    if name in held:
+        return EnvironmentObject(held[name])._bpy_object
+    return BlenderPath(session, None, str(name), f"bpymorse.get_object({name!r})",
+                       f": {name!r} is an object of MORSE's Blender environment file, which morsec does not load")
