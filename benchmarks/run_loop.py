@@ -42,18 +42,7 @@ from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
 
 SCENES = {}  # name -> (description, YAML, target ratio)
 
-SCENE = """\
-environment:
-  name: empty
-  time: {strategy: fixed_step, frequency: 60}
-robots:
-  - name: robot
-    type: atrv
-    components:
-      - {name: pose, type: pose, translate: [0.0, 0.0, -0.1], frequency: 60, streams: [socket]}
-      - {name: odometry, type: odometry, frequency: 60, streams: [socket]}
-      - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
-"""
+SCENE = (Path(__file__).resolve().parent / "reference.yaml").read_text()  # ATRV: pose, odometry, motion_vw
 SCENES["reference"] = ("ATRV: pose, odometry, motion_vw at 60 Hz, socket streams", SCENE, 1.15)
 
 SENSORS = """\

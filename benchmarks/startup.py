@@ -33,18 +33,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
-SCENE = """\
-environment:
-  name: empty
-  time: {strategy: fixed_step, frequency: 60}
-robots:
-  - name: robot
-    type: atrv
-    components:
-      - {name: pose, type: pose, translate: [0.0, 0.0, -0.1], frequency: 60, streams: [socket]}
-      - {name: odometry, type: odometry, frequency: 60, streams: [socket]}
-      - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
-"""
+SCENE = (Path(__file__).resolve().parent / "reference.yaml").read_text()  # ATRV: pose, odometry, motion_vw
 
 BARE_LOAD = "import mujoco, sys; mujoco.MjModel.from_xml_path(sys.argv[1])"
 BARE_STEP = """\

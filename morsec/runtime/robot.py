@@ -53,6 +53,10 @@ class RobotHandle:
         self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
         self._slid: np.ndarray | None = None  # (vx, vy) at the end of the last interval slid (see coast)
+        self._touched: float | None = None  # simulated s: when it last touched something not its own
+        self._bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
+        self._masses = m.body_mass[self._bodies].copy()
+        self._own_geoms = np.isin(m.geom_bodyid, self._bodies)  # the geoms of its bodies
 
     @property
     def free(self) -> bool:
@@ -151,19 +155,13 @@ class RobotHandle:
         """Whether the robot rests on something that is not part of it (the ground, an object): it touched
         it within GROUND_MEMORY (a robot driven sideways hops on its wheels, off the ground a tick in two;
         MORSE's body rested on it)."""
-        m, d = self.sim.model, self.sim.data
-        touching = False
-        if d.ncon:
-            own = getattr(self, "_own_geoms", None)
-            if own is None:
-                own = self._own_geoms = np.isin(m.geom_bodyid, self.subtree())
-            g1, g2 = d.contact.geom1[:d.ncon], d.contact.geom2[:d.ncon]
-            touching = bool(np.any(own[g1] != own[g2]))
+        d = self.sim.data
         now = self.sim.clock.elapsed
-        if touching:
-            self._touched = now
-        touched = getattr(self, "_touched", None)
-        return touched is not None and now - touched <= self.GROUND_MEMORY
+        if d.ncon:
+            own = self._own_geoms
+            if np.any(own[d.contact.geom1[:d.ncon]] != own[d.contact.geom2[:d.ncon]]):
+                self._touched = now
+        return self._touched is not None and now - self._touched <= self.GROUND_MEMORY
 
     # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
     # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
@@ -235,9 +233,6 @@ class RobotHandle:
     def centre_of_mass(self) -> np.ndarray:
         """The whole robot's centre of mass, world frame, from its bodies' (d.xipos: right after a teleport
         too, which updates the kinematics but not d.subtree_com)."""
-        if not hasattr(self, "_bodies"):
-            self._bodies = np.array(self.subtree(), dtype=int)
-            self._masses = self.sim.model.body_mass[self._bodies].copy()
         total = float(self._masses.sum())
         if total <= 0:
             return self.sim.data.xipos[self.body_id].copy()
