@@ -75,10 +75,6 @@ class SteerForce(Actuator):
             if m.geom_bodyid[g] == self.chassis and m.geom_type[g] == mujoco.mjtGeom.mjGEOM_CYLINDER:
                 m.geom_contype[g] = 0
                 m.geom_conaffinity[g] = 0
-        # Blender's damping of the chassis, unless the compiler gave the robot dampers of its own
-        damped = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"{self.robot.name}/damping_x") >= 0
-        linear, angular = getattr(rc, "damping", (0.04, 0.1))
-        self.damping = None if damped else (-math.log(1.0 - linear), -math.log(1.0 - angular))
         self.last = None
         self.geomid = np.zeros(1, dtype=np.int32)
         self.normal = np.zeros(3)
@@ -193,11 +189,6 @@ class SteerForce(Actuator):
             arm -= up * ((up @ arm) * (1.0 - roll))  # roll influence: the tyre forces act nearer the centre
             push(f, com + arm)
 
-        if self.damping is not None:
-            linear, angular = self.damping
-            inertia = irot @ np.diag(m.body_inertia[b]) @ irot.T
-            total_f -= self.mass * v * (1.0 - math.exp(-linear * dt)) / dt
-            total_t -= inertia @ w * (1.0 - math.exp(-angular * dt)) / dt
         self.robot.apply_wrench(self.name, total_f, total_t)
         self._turn_wheels(steer, contacts, velocity_at, dt)
 
