@@ -35,7 +35,10 @@ class Poller:
             key.data(key.fileobj)
 
     def close(self) -> None:
-        for key in list(self.selector.get_map().values()):
+        keys = self.selector.get_map()
+        if keys is None:  # closed already
+            return
+        for key in list(keys.values()):
             try:
                 key.fileobj.close()
             except OSError:

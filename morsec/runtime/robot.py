@@ -20,11 +20,13 @@ def free_joint(model, body: int) -> tuple[int, int] | None:
     return None
 
 
-def place(model, data, body: int, pos, rot) -> None:
+def place(model, data, body: int, pos, rot, joint: tuple[int, int] | None | bool = True) -> None:
     """Put a body (a robot's base or a passive object) at a world pose and stop it: through its free joint,
-    or by moving a static body in the model."""
+    or by moving a static body in the model. `joint`: the body's free_joint when the caller knows it (None:
+    none), True to look it up."""
     pos = bounded(pos, MAX_POSITION, "a position (m)")
-    joint = free_joint(model, body)
+    if joint is True:
+        joint = free_joint(model, body)
     if joint is not None:
         adr, dof = joint
         data.qpos[adr:adr + 3] = pos
@@ -204,8 +206,21 @@ class RobotHandle:
 
     def set_pose(self, pos, rot) -> None:
         """Put the base at a world pose and stop it."""
-        place(self.sim.model, self.sim.data, self.body_id, pos, rot)
+        joint = (self.qpos_adr, self.qvel_adr) if self.free else None
+        place(self.sim.model, self.sim.data, self.body_id, pos, rot, joint)
         self._follow.clear()  # the velocity it had is gone
+        self._slid = None
+
+    def base_qpos(self) -> np.ndarray:
+        """The free joint's 7 positions in qpos (a view)."""
+        assert self.qpos_adr is not None, f"robot {self.name} has no free joint"
+        return self.sim.data.qpos[self.qpos_adr:self.qpos_adr + 7]
+
+    def stop(self) -> None:
+        """Stop the robot where it is, as set_pose does."""
+        if self.free:
+            self._base_qvel()[:] = 0.0
+        self._follow.clear()
         self._slid = None
 
     def place_frame(self, frame_body: int, pos, rot) -> None:

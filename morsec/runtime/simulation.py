@@ -153,6 +153,7 @@ class Simulation:
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
         self.pinned: dict[int, tuple] = {}  # bodies held where an actuator put them, for this frame's physics
+        self._free_joints: dict[int, tuple[int, int] | None] = {}  # body -> free_joint(body), looked up once
         self.requests = RequestManager()
         self.requests.on_leave.append(self.client_left)
         self.poller = Poller()
@@ -392,7 +393,9 @@ class Simulation:
     def pin(self, body: int) -> None:
         """Hold a body where it is through this frame's physics (a teleport: MORSE's sensors read the pose
         the teleport set, before physics moved it)."""
-        joint = free_joint(self.model, body)
+        joint = self._free_joints.get(body, False)
+        if joint is False:
+            joint = self._free_joints[body] = free_joint(self.model, body)
         if joint is not None:
             adr, dof = joint
             self.pinned[body] = (adr, dof, self.data.qpos[adr:adr + 7].copy())

@@ -61,3 +61,36 @@ def test_a_ground_robot_put_high_falls_from_there(tmp_path):
         assert h.data("r.pose")["z"] == pytest.approx(1.0, abs=2e-3)  # one frame of fall: 1.4 mm
         h.run_for(1.5)
         assert h.data("r.pose")["z"] == pytest.approx(0.10, abs=0.01)
+
+
+TELEPORTED = """
+environment: {name: empty, time: {strategy: fixed_step, frequency: 60}}
+robots:
+  - name: r
+    type: atrv
+    translate: [1.0, 2.0, 0.0]
+    components:
+      - {name: pose, type: pose}
+      - {name: teleport, type: teleport}
+      - {name: motion, type: motion_vw}
+"""
+
+
+def test_a_teleport_that_receives_nothing_holds_its_robot_however_it_is_pushed(tmp_path):
+    """An idle teleport keeps applying its command: a robot moved by hand, or driven by another actuator,
+    is back at the command's pose at the next frame (the teleport skips recomputing the pose only while
+    the robot is still where the command put it)."""
+    with simulate(TELEPORTED, tmp_path) as sim:
+        sim.step(5)
+        held = sim.data("r.pose")
+        robot = sim.sim.robots[0].handle
+        robot.base_qpos()[:2] += [0.5, -0.3]  # pushed by hand, between two frames
+        sim.step(1)
+        assert (sim.data("r.pose")["x"], sim.data("r.pose")["y"]) == pytest.approx((held["x"], held["y"]), abs=1e-9)
+        sim.command("r.motion", v=1.0, w=0.5)  # another actuator drives it
+        sim.step(30)
+        assert [sim.data("r.pose")[k] for k in ("x", "y", "z", "yaw")] == \
+            pytest.approx([held[k] for k in ("x", "y", "z", "yaw")], abs=1e-9)
+        sim.command("r.teleport", x=3.0, y=-1.0, z=held["z"], roll=held["roll"], pitch=held["pitch"], yaw=0.5)
+        sim.step(1)
+        assert [sim.data("r.pose")[k] for k in ("x", "y", "yaw")] == pytest.approx([3.0, -1.0, 0.5], abs=1e-6)

@@ -24,7 +24,17 @@ class Teleport(Actuator):
         DataField("yaw", 0.0, "float", "rotation about z, rad"),
     )
 
+    _placed: tuple | None = None  # the last command applied, and the robot's qpos it gave
+    _placed_qpos: np.ndarray | None = None
+    _rigid = False  # see start
+
     def start(self):
+        # a free robot whose base carries this frame with no joint between: a robot at the qpos a command
+        # gave is at that command
+        m, body = self.sim.model, self.body_id
+        while body != self.robot.body_id and body > 0 and m.body_jntnum[body] == 0:
+            body = int(m.body_parentid[body])
+        self._rigid = self.robot.free and body == self.robot.body_id
         x, y, z = self.position()
         roll, pitch, yaw = self.euler()
         self.local_data.update(x=x, y=y, z=z, roll=roll, pitch=pitch, yaw=yaw)
@@ -34,10 +44,18 @@ class Teleport(Actuator):
 
     def default_action(self):
         d = self.local_data
+        command = (d["x"], d["y"], d["z"], d["roll"], d["pitch"], d["yaw"])
+        robot = self.robot
+        if self._rigid and command == self._placed and np.array_equal(robot.base_qpos(), self._placed_qpos):
+            robot.stop()  # where the same command put it (pinned since): no need to compute the pose again
+            self.sim.pin(robot.body_id)
+            return
         target_rot = quat_to_matrix(euler_to_quat(float(d["roll"]), float(d["pitch"]), float(d["yaw"])))
         target_pos = np.array([float(d["x"]), float(d["y"]), float(d["z"])])
-        self.robot.place_frame(self.body_id, target_pos, target_rot)
-        self.sim.pin(self.robot.body_id)  # physics does not move it before the sensors read it
+        robot.place_frame(self.body_id, target_pos, target_rot)
+        self.sim.pin(robot.body_id)  # physics does not move it before the sensors read it
+        if self._rigid:
+            self._placed, self._placed_qpos = command, robot.base_qpos().copy()
 
     @service
     def translate(self, x: float, y: float = 0.0, z: float = 0.0):
