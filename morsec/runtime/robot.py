@@ -20,13 +20,15 @@ def free_joint(model, body: int) -> tuple[int, int] | None:
     return None
 
 
-def place(model, data, body: int, pos, rot, joint: tuple[int, int] | None | bool = True) -> None:
+def place(model, data, body: int, pos, rot) -> None:
     """Put a body (a robot's base or a passive object) at a world pose and stop it: through its free joint,
-    or by moving a static body in the model. `joint`: the body's free_joint when the caller knows it (None:
-    none), True to look it up."""
+    or by moving a static body in the model."""
+    place_with(model, data, body, free_joint(model, body), pos, rot)
+
+
+def place_with(model, data, body: int, joint: tuple[int, int] | None, pos, rot) -> None:
+    """place, the body's free_joint known."""
     pos = bounded(pos, MAX_POSITION, "a position (m)")
-    if joint is True:
-        joint = free_joint(model, body)
     if joint is not None:
         adr, dof = joint
         data.qpos[adr:adr + 3] = pos
@@ -206,8 +208,8 @@ class RobotHandle:
 
     def set_pose(self, pos, rot) -> None:
         """Put the base at a world pose and stop it."""
-        joint = (self.qpos_adr, self.qvel_adr) if self.free else None
-        place(self.sim.model, self.sim.data, self.body_id, pos, rot, joint)
+        joint = (self.qpos_adr, self.qvel_adr) if self.qpos_adr is not None and self.qvel_adr is not None else None
+        place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
         self._follow.clear()  # the velocity it had is gone
         self._slid = None
 

@@ -393,9 +393,9 @@ class Simulation:
     def pin(self, body: int) -> None:
         """Hold a body where it is through this frame's physics (a teleport: MORSE's sensors read the pose
         the teleport set, before physics moved it)."""
-        joint = self._free_joints.get(body, False)
-        if joint is False:
-            joint = self._free_joints[body] = free_joint(self.model, body)
+        if body not in self._free_joints:
+            self._free_joints[body] = free_joint(self.model, body)
+        joint = self._free_joints[body]
         if joint is not None:
             adr, dof = joint
             self.pinned[body] = (adr, dof, self.data.qpos[adr:adr + 7].copy())
