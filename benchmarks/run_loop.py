@@ -1,20 +1,27 @@
-"""morsec's main loop against a bare MuJoCo loop over the same compiled model, for two reference scenes:
+"""morsec's main loop against a bare MuJoCo loop over the same compiled model, for three reference scenes
+(issue 14's rows):
 
-- reference (target ratio <= 1.15): an ATRV with a pose sensor, an odometry sensor and a motion_vw
+- reference (target ratio <= 1.10): an ATRV with a pose sensor, an odometry sensor and a motion_vw
   actuator, all at 60 Hz with socket streams, no client connected, `fixed_step`;
-- sensors (target <= 1.3): an ATRV in the boxes room with a Sick laser at 10 Hz, an IMU and a GPS at
-  60 Hz with noise modifiers, and motion_vw.
- The morsec side is `Simulation.run(duration)`,
+- sensors (target <= 1.15): an ATRV in the boxes room with a Sick laser at 10 Hz, an IMU and a GPS at
+  60 Hz with noise modifiers, and motion_vw;
+- fleet (target <= 1.05): 128 ATRVs on a grid, each with a pose sensor and motion_vw at 60 Hz.
+
+The morsec side is `Simulation.run(duration)`,
 the whole loop as `morsec run` drives it: socket polling, actuator and sensor ticks (default_action,
 timestamps, modifiers), the clock, the service flush. The bare side is `mujoco.mj_step(m, d, nstep)` per
 frame, with the same number of physics sub-steps per frame, on a fresh MjData of the same scene.xml, for
 the same number of frames. Runs alternate (morsec, bare, morsec, ...) so that both see the same machine
 load, and the best of each is kept.
 
-    .venv/bin/python benchmarks/run_loop.py [--scene reference|sensors] [--duration 20] [--repeats 5] [--profile]
+    python benchmarks/run_loop.py [--scene reference|sensors|fleet] [--duration 20] [--repeats 5] [--profile]
+    python benchmarks/run_loop.py --callgrind [--scene ...] [--duration 2]
 
 Prints both wall times, their ratio, the overhead per frame (split into the loop's own cost, measured
-with every component deactivated, and the components' ticks) and the real-time factors.
+with every component deactivated, and the components' ticks) and the real-time factors. --callgrind
+counts instructions instead (valgrind's callgrind, which machine load does not change): each side runs in
+a child process twice, for --duration and for twice as long, and the difference is the instructions of
+--duration's frames (start-up cancels out).
 """
 
 from __future__ import annotations
@@ -24,8 +31,8 @@ import cProfile
 import io
 import json
 import pstats
-import random
-import socket
+import re
+import subprocess
 import sys
 import tempfile
 import time
@@ -37,13 +44,12 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from morsec.app.project import build_scene  # noqa: E402
-from morsec.component.catalogue import load_catalogue  # noqa: E402
 from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
 
 SCENES = {}  # name -> (description, YAML, target ratio)
 
 SCENE = (Path(__file__).resolve().parent / "reference.yaml").read_text()  # ATRV: pose, odometry, motion_vw
-SCENES["reference"] = ("ATRV: pose, odometry, motion_vw at 60 Hz, socket streams", SCENE, 1.15)
+SCENES["reference"] = ("ATRV: pose, odometry, motion_vw at 60 Hz, socket streams", SCENE, 1.10)
 
 SENSORS = """\
 environment:
@@ -60,34 +66,21 @@ robots:
       - {name: gps, type: gps, frequency: 60, streams: [socket], modifiers: [{name: noise}]}
       - {name: motion, type: motion_vw, frequency: 60, streams: [socket]}
 """
-SCENES["sensors"] = ("ATRV in the boxes room: Sick laser at 10 Hz, IMU and GPS at 60 Hz with noise", SENSORS, 1.3)
+SCENES["sensors"] = ("ATRV in the boxes room: Sick laser at 10 Hz, IMU and GPS at 60 Hz with noise", SENSORS, 1.15)
+
+FLEET_SIZE = 128
+FLEET = "environment:\n  name: empty\n  time: {strategy: fixed_step, frequency: 60}\nrobots:\n" + "".join(
+    f"  - {{name: atrv{i}, type: atrv, translate: [{(i % 16) * 3.0}, {(i // 16) * 3.0}, 0.0], components: "
+    f"[{{name: pose, type: pose, frequency: 60, streams: [socket]}}, "
+    f"{{name: motion, type: motion_vw, frequency: 60, streams: [socket]}}]}}\n" for i in range(FLEET_SIZE))
+SCENES["fleet"] = (f"{FLEET_SIZE} ATRVs, each with pose and motion_vw at 60 Hz", FLEET, 1.05)
 
 
-def free_block(count: int) -> int:
-    """The first of `count` consecutive free TCP ports (below the ephemeral range)."""
-    rng = random.Random()
-    for _ in range(1000):
-        base = rng.randrange(20000, 32000 - count)
-        socks = []
-        try:
-            for port in range(base, base + count):
-                sock = socket.socket()
-                socks.append(sock)
-                sock.bind(("127.0.0.1", port))
-            return base
-        except OSError:
-            continue
-        finally:
-            for sock in socks:
-                sock.close()
-    raise RuntimeError("no free ports")
-
-
-def run_morsec(build: Path, catalogue, duration: float, profile: cProfile.Profile | None = None,
+def run_morsec(build: Path, duration: float, profile: cProfile.Profile | None = None,
                components: bool = True) -> tuple[float, int]:
     """Wall seconds of Simulation.run(duration) (construction excluded) and the frames it ran.
     components=False: every component deactivated (`simulation deactivate`), to see the loop's own cost."""
-    options = RunOptions(strategy="fixed_step", service_port=0, port_base=free_block(10))
+    options = RunOptions(strategy="fixed_step", service_port=0, port_base=0)
     sim = Simulation(build, options)
     for comp in sim.components:
         comp.active = components
@@ -112,19 +105,42 @@ def run_bare(build: Path, frames: int, substeps: int) -> float:
     return time.perf_counter() - start
 
 
+def callgrind_frames(build: Path, side: str, duration: float) -> int:
+    """Instructions of `duration` simulated seconds of one side's loop: a child process under callgrind
+    runs 2 x duration, another runs duration, and start-up cancels out of the difference."""
+    def count(seconds: float) -> int:
+        with tempfile.TemporaryDirectory() as out:
+            cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}/cg.%p", sys.executable, __file__,
+                   "--child", side, "--build", str(build), "--duration", repr(seconds)]
+            result = subprocess.run(cmd, capture_output=True, text=True)
+            if result.returncode != 0:
+                raise SystemExit(f"failed under callgrind: {' '.join(cmd)}\n{result.stderr[-2000:]}")
+            return sum(int(m) for m in re.findall(r"Collected : (\d+)", result.stderr))
+    return count(2 * duration) - count(duration)
+
+
+def child(side: str, build: Path, duration: float) -> None:
+    """One side's loop, for --callgrind: morsec's Simulation.run or bare mj_step, for `duration`."""
+    loop = json.loads((build / "manifest.json").read_text())["loop"]
+    frames = round(duration * float(loop["frequency"]))
+    if side == "morsec":
+        run_morsec(build, duration)
+    else:
+        run_bare(build, frames, int(loop["physics_substeps"]))
+
+
 def measure(build: Path, description: str, target: float, args) -> None:
-    catalogue = load_catalogue(ROOT)
     loop = json.loads((build / "manifest.json").read_text())["loop"]
     substeps, frequency = int(loop["physics_substeps"]), float(loop["frequency"])
 
-    run_morsec(build, catalogue, 1.0)  # warm-up: imports, caches
+    run_morsec(build, 1.0)  # warm-up: imports, caches
     best_morsec = best_bare = best_loop = float("inf")
     frames = 0
     for _ in range(args.repeats):
-        wall, frames = run_morsec(build, catalogue, args.duration)
+        wall, frames = run_morsec(build, args.duration)
         best_morsec = min(best_morsec, wall)
         best_bare = min(best_bare, run_bare(build, frames, substeps))
-        best_loop = min(best_loop, run_morsec(build, catalogue, args.duration, components=False)[0])
+        best_loop = min(best_loop, run_morsec(build, args.duration, components=False)[0])
 
     simulated = frames / frequency
     ratio = best_morsec / best_bare
@@ -140,9 +156,15 @@ def measure(build: Path, description: str, target: float, args) -> None:
           f"ticks {(best_morsec - best_loop) / frames * 1e6:.1f}")
     print(f"ratio morsec / bare : {ratio:8.3f}  (target <= {target}) {'OK' if ratio <= target else 'ABOVE TARGET'}")
 
+    if args.callgrind:
+        ours = callgrind_frames(build, "morsec", args.duration)
+        theirs = callgrind_frames(build, "bare", args.duration)
+        print(f"instructions per frame (callgrind): morsec {ours / frames:,.0f} | bare {theirs / frames:,.0f} | "
+              f"ratio {ours / theirs:.3f}  (target <= {target}) {'OK' if ours / theirs <= target else 'ABOVE TARGET'}")
+
     if args.profile:
         profile = cProfile.Profile()
-        run_morsec(build, catalogue, args.duration, profile)
+        run_morsec(build, args.duration, profile)
         out = io.StringIO()
         pstats.Stats(profile, stream=out).sort_stats("tottime").print_stats(15)
         print(out.getvalue())
@@ -156,7 +178,12 @@ def main(argv=None) -> int:
     parser.add_argument("--build", type=Path, help="an existing build folder instead of the reference scene")
     parser.add_argument("--profile", action="store_true", help="also profile one morsec run (cProfile)")
     parser.add_argument("--scene", choices=sorted(SCENES), help="only this reference scene (default: all)")
+    parser.add_argument("--callgrind", action="store_true", help="also count instructions per frame (valgrind)")
+    parser.add_argument("--child", choices=["morsec", "bare"], help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
+    if args.child:
+        child(args.child, args.build, args.duration)
+        return 0
 
     names = [args.scene] if args.scene else list(SCENES)
     for name in names:
