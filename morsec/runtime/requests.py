@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import inspect
 import logging
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -41,6 +42,10 @@ class RequestManager:
         self.current: Request | None = None  # the request being dispatched (for async services)
         self.on_request: list[Callable[[Request], None]] = []  # told of each request, before it is handled
         self.on_leave: list[Callable[[Any], None]] = []  # told of each client that went away
+        self.last_request = float("-inf")  # wall clock (perf_counter) of the last request handled
+        # (id(owner), attribute) -> (owner, the method's signature): inspect.signature costs more than the rest
+        # of a request, so once per method (the owner kept: its id stays its own)
+        self._signatures: dict[tuple[int, str], tuple[Any, inspect.Signature]] = {}
 
     def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
         self.exposed[name] = Exposed(obj, dict(services))
@@ -61,6 +66,7 @@ class RequestManager:
         return request in self.running.get(request.component, ())
 
     def handle(self, request: Request) -> None:
+        self.last_request = time.perf_counter()
         for listener in self.on_request:
             listener(request)
         exposed = self.exposed.get(request.component)
@@ -70,9 +76,14 @@ class RequestManager:
                           "has not been registered in Socket service manager")
             return
         owner = exposed.owner(request.service)
-        method = getattr(owner, _attribute(owner, info))
+        attribute = _attribute(owner, info)
+        method = getattr(owner, attribute)
+        known = self._signatures.get((id(owner), attribute))
+        if known is None or known[0] is not owner:
+            known = self._signatures[(id(owner), attribute)] = (owner, inspect.signature(method))
+        signature = known[1]
         try:
-            inspect.signature(method).bind(*request.args)
+            signature.bind(*request.args)
         except TypeError as err:
             if not request.args:  # MORSE's words (pymorse raises MorseServiceFailed, not TypeError)
                 request.reply(request.id, FAILED, f"Socket service manager: parameters expected for service "

@@ -31,6 +31,7 @@ from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_man
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
+CONVERSATION = 0.01  # s of wall time after a request during which the sockets are polled every frame
 # wall-clock s between a frame's sensor messages and the answers to the sleeps that ended at it, so that a client
 # reading its sockets in any order (pymorse's polling thread) has the messages when it gets the answer
 ANSWER_GAP = 0.002
@@ -435,9 +436,11 @@ class Simulation:
                 if duration is not None and self.clock.elapsed >= duration - 1e-9:
                     break
                 # sockets are polled every frame, but at most every POLL_PERIOD of wall time: a fixed_step
-                # loop runs frames far faster than any client can tell apart (lockstep polls every frame)
+                # loop runs frames far faster than any client can tell apart (lockstep polls every frame, and
+                # so does a loop that answered a request within CONVERSATION: the client waits on its answers)
                 now = time.perf_counter()
-                if now >= next_poll or (self.sync is not None and self.sync.engaged):
+                if (now >= next_poll or now - self.requests.last_request < CONVERSATION
+                        or (self.sync is not None and self.sync.engaged)):
                     self.poller.poll(0.0)
                     next_poll = now + POLL_PERIOD
                 if self.quitting:
