@@ -92,23 +92,84 @@ def test_motion_vw_diff_turns_as_commanded(robot, tmp_path):
 
 
 def test_motion_vw_diff_wheel_speeds_and_services(tmp_path):
-    """Wheel speeds are (v -+ e w) / R with e half of FixTurningSpeed (MORSE); stop() holds the wheels."""
-    with simulate(scene("segwayrmp400", ["{name: motion, type: motion_vw_diff}"],
+    """Wheel speeds are MORSE's, (v -+ e w) / R with e half of FixTurningSpeed, on a robot that turns at w (the
+    Pioneer); stop() holds the wheels."""
+    with simulate(scene("pioneer3dx", ["{name: motion, type: motion_vw_diff}"],
                         properties="properties: {FixTurningSpeed: 1.0}"), tmp_path) as sim:
         m, d = sim.sim.model, sim.sim.data
         sim.call("r.motion", "set_speed", 0.4, 0.2)
         sim.step()
-        radius = 0.2667
-        for joint, side in (("wheel_left_joint", 1), ("wheel_rear_left_joint", 1),
-                            ("wheel_right_joint", -1), ("wheel_rear_right_joint", -1)):
+        radius = 0.0975
+        wheels = [m.joint(f"r/{joint}").dofadr[0] for joint in ("wheel_left_joint", "wheel_right_joint")]
+        for joint, side in (("wheel_left_joint", 1), ("wheel_right_joint", -1)):
             act = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"r.motion/{joint}")
             assert m.actuator_trnid[act][0] == m.joint(f"r/{joint}").id
             assert d.ctrl[act] == pytest.approx((0.4 - side * 0.5 * 0.2) / radius)
         sim.call("r.motion", "stop")
         assert sim.data("r.motion") == {"v": 0.0, "w": 0.0}
         sim.run_for(1.5)
+        assert np.abs(d.qvel[wheels]).max() * radius < 0.02  # rim speed, m/s
+        assert np.linalg.norm(d.qvel[:3]) < 0.02
+
+
+def test_motion_vw_diff_skid_steering_wheel_speeds(tmp_path):
+    """A skid-steering Segway turns at (v_right - v_left) / 1.2 m of MORSE's wheel speeds, here
+    FixTurningSpeed 1.0 * w / 1.2; the four wheels are asked that rate through the model's own effective
+    track on MuJoCo (1.6 m), the two of a side at the same speed; stop() holds the wheels."""
+    with simulate(scene("segwayrmp400", ["{name: motion, type: motion_vw_diff}"],
+                        properties="properties: {FixTurningSpeed: 1.0}"), tmp_path) as sim:
+        m, d = sim.sim.model, sim.sim.data
+        sim.call("r.motion", "set_speed", 0.4, 0.2)
+        sim.step()
+        radius, turn = 0.2667, 0.2 * 1.0 / 1.2
+        for joint, side in (("wheel_left_joint", 1), ("wheel_rear_left_joint", 1),
+                            ("wheel_right_joint", -1), ("wheel_rear_right_joint", -1)):
+            act = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, f"r.motion/{joint}")
+            assert m.actuator_trnid[act][0] == m.joint(f"r/{joint}").id
+            assert d.ctrl[act] == pytest.approx((0.4 - side * 1.6 / 2 * turn) / radius)
+        sim.call("r.motion", "stop")
+        sim.run_for(1.5)
         assert np.abs(d.qvel[6:10]).max() < 0.05
         assert np.linalg.norm(d.qvel[:3]) < 0.02
+
+
+def gradual(sim, name: str, v: float, w: float, t: float) -> float:
+    """MORSE's segway tests' command profile: a quarter, then half of (v, w), (v, w) for 0.9 t, half, a quarter,
+    stop, and a second to settle. Returns what w adds up to (1.025 t w)."""
+    tic = t / 20.0
+    for share, tics in ((0.25, 2), (0.5, 1), (1.0, 18), (0.5, 2), (0.25, 2)):
+        sim.command(f"{name}.motion", v=share * v, w=share * w)
+        sim.run_for(tics * tic)
+    sim.command(f"{name}.motion", v=0.0, w=0.0)
+    sim.run_for(1.0)
+    return 1.025 * t * w
+
+
+@pytest.mark.parametrize(("fix", "yaw"), [(None, 0.0), (0.0, math.pi / 2)])
+def test_segway_turns_as_morses(fix, yaw, tmp_path):
+    """MORSE's Segway skid-steered as if its wheels were 1.2 m apart: it turned at (v_right - v_left) / 1.2 m.
+    With FixTurningSpeed 1.16 (MORSE's default) w = -pi/4 at 1 m/s for 2 s (w adding up to 1.61 rad) turns
+    it 1.61 * 1.16 / 1.2 = 1.56 rad, along the arc of that rate; with FixTurningSpeed 0 (the 0.62 m track)
+    it turns 0.83 rad, and a Segway set off facing y ends where MORSE's did in its rotated_segway test
+    (recorded with that track): x 0.75, y 1.75, yaw 0.75."""
+    properties = "" if fix is None else f"properties: {{FixTurningSpeed: {fix}}}"
+    with simulate(scene("segwayrmp400", ["{name: motion, type: motion_vw_diff}"], yaw=yaw,
+                        properties=properties), tmp_path) as sim:
+        sim.run_for(0.3)
+        start, rot = sim.body_pose("r")
+        yaws = [sim.yaw("r")]
+        commanded = gradual(sim, "r", 1.0, -math.pi / 4, 2.0)
+        yaws.append(sim.yaw("r"))
+        end, _ = sim.body_pose("r")
+    turned = float(np.unwrap(yaws)[-1] - yaws[0])
+    moved = (rot.T @ (end - start))[:2]
+    k = (1.16 if fix is None else fix or 0.62) / 1.2  # the wheel speeds' track over the skid track
+    assert turned == pytest.approx(k * commanded, abs=0.025)  # turning at w would be 0.05 more
+    r = 1.0 / (k * math.pi / 4)  # the arc: v over the rate
+    assert moved == pytest.approx([r * math.sin(-turned), -r * (1 - math.cos(turned))], abs=0.1)
+    if fix == 0.0:
+        assert (end - start)[:2] == pytest.approx([0.75, 1.75], abs=0.15)
+        assert yaws[-1] == pytest.approx(0.75, abs=0.1)
 
 
 def test_motion_vw_diff_services_are_declared():

@@ -22,6 +22,15 @@ class SegwayRMP400(Robot):
     wheel_track: ClassVar[float] = 0.62
     left_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_left_joint", "wheel_rear_left_joint")
     right_wheel_joints: ClassVar[tuple[str, ...]] = ("wheel_right_joint", "wheel_rear_right_joint")
+    # skid steering: wheels that skid sideways in a turn turn the robot at (v_right - v_left) / B, B an
+    # effective track wider than the real one. MORSE's Segway on Bullet had B = 1.2 m, as its two test files
+    # that turn it recorded: segway_vw (FixTurningSpeed 1.16) turned pi/2 where w added up to 1.61 rad
+    # (B = 1.16 * 1.61 / (pi/2) = 1.19 m); rotated_segway, recorded while FixTurningSpeed was 0 (the real
+    # 0.624 m track), turned 0.82 rad for 1.61 (B = 0.624 * 1.61 / 0.82 = 1.22 m). motion_vw_diff turns it so.
+    morse_skid_track: ClassVar[float] = 1.2
+    # the model's own effective track on MuJoCo, which turns the rate into wheel speeds: it turns the robot at
+    # 0.97 to 1.04 of the rate asked at 0.25 to 1 m/s (0.83 in place); motion_vw_diff's trim corrects the rest
+    skid_track: ClassVar[float] = 1.6
     wheel_kv: ClassVar[float] = 3000.0  # wheel velocity servo gain, N m per rad/s
     wheel_max_torque: ClassVar[float] = 300.0  # N m per wheel
     # drive train (hub motor rotor through the gearbox) reflected on each wheel joint, kg m^2: it also
@@ -38,7 +47,9 @@ class SegwayRMP400(Robot):
         WheelFRName: str = "wheel2"
         WheelRLName: str = Field("wheel3", description="link name of the rear left wheel")
         WheelRRName: str = Field("wheel4", description="link name of the rear right wheel")
-        FixTurningSpeed: float = 1.5
+        FixTurningSpeed: float = Field(1.16, description="MORSE PhysicsDifferentialRobot: the wheel track used "
+                                       "to compute the wheel speeds from (v, w), m (0: the real track, 0.62 m); "
+                                       "the robot turns at w times this over 1.2 m, as MORSE's (1.16: 0.97 w)")
 
 
 COMPONENT = SegwayRMP400
