@@ -472,7 +472,7 @@ def read_lines(client: socket.socket, timeout: float = 5.0) -> list[bytes]:
 
 
 def friction_loss(robot_friction: float | None = None, tick: float = 1.0 / 60) -> float:
-    """m/s of the speed set at each tick that MORSE's ground friction takes from a ground robot
-    (morsec.kits.ground_friction: the same at any speed)."""
-    (mean, _), _ = slide(1.0, 0.0, ground_friction(robot_friction), 9.81, tick, tick)
+    """m/s of the speed set at each tick that MORSE's ground friction takes from a ground robot, over the tick
+    (morsec.kits.ground_friction: the same at any speed; damping aside)."""
+    (mean, _), _, _ = slide(1.0, 0.0, ground_friction(robot_friction), 9.81, tick, tick)
     return 1.0 - mean

@@ -104,6 +104,7 @@ class RobotBody:
     gravcomp: bool
     friction: float | None
     collides: bool
+    frictionless: bool = False  # its contacts carry no friction (see _driven_by_velocity)
     sites: list[dict] = field(default_factory=list)  # more sites on the base body: name, pos
 
 
@@ -209,7 +210,7 @@ def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
         sites.append({"name": mjcf_names.centre_of_mass(robot.name), "pos": mass_properties(tree)[1]})
     return RobotBody(name=robot.name, type=robot.type, root=tree, components=components, free=not static,
                      gravcomp=bool(robot.properties.NoGravity), friction=robot.friction, collides=collides,
-                     sites=sites)
+                     frictionless=not static and _driven_by_velocity(robot, cat), sites=sites)
 
 
 SECTION_TEMPLATES = ("actuator.xml.j2", "sensor.xml.j2", "equality.xml.j2")
@@ -244,6 +245,16 @@ def _component_sections(scene, cat: Catalogue, env, robot_trees: dict[str, Link]
                                             objects=scene.objects, properties=comp.properties,
                                             component=comp))
     return out
+
+
+def _driven_by_velocity(robot, cat: Catalogue) -> bool:
+    """A ground robot whose body velocity an actuator sets (its base servos hold it; MORSE set it at each tick):
+    its contacts carry no friction. MORSE's ground friction on it is the servos' targets' (kits.ground_friction),
+    and MuJoCo's sliding friction would lift it: a contact sliding at v separates at up to mu v in MuJoCo's
+    convex contact model, so that an ATRV driven sideways at 1 m/s hopped (+-0.1 m/s up and down) and rocked
+    (+-0.3 rad/s), against the ground's 0.5 or 0.25 as well as 1. The robot's geoms take precedence (priority)
+    over the other geom of each contact, the ground's, an object's."""
+    return bool(getattr(robot.properties, "GroundRobot", False)) and _needs_servo(robot, cat)
 
 
 def _needs_servo(robot, cat: Catalogue) -> bool:

@@ -56,7 +56,10 @@ class RobotHandle:
         self.servo = ids if min(ids) >= 0 else None
         self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
+        self.damping = 0.0  # Blender's linear damping of its body (the robot class's `damping`)
         self._slid: np.ndarray | None = None  # (vx, vy) at the end of the last interval slid (see coast)
+        self._ticks: list[float] = []  # speed at the end of each tick to come, as a share of the held one
+        self._sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
         self._touched: float | None = None  # simulated s: when it last touched something not its own
         self._bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
         self._masses = m.body_mass[self._bodies].copy()
@@ -84,6 +87,7 @@ class RobotHandle:
         linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
         angular = bounded(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
+            self._ticks = []
             if self.servo:
                 d.ctrl[self.servo] = 0.0
                 self._follow.pop("base servos", None)
@@ -126,16 +130,49 @@ class RobotHandle:
     # ---- MORSE's ground friction between the ticks that set a ground robot's velocity (kits.ground_friction)
     def _slide(self, vx: float, vy: float, frequency: float) -> tuple[float, float]:
         """The mean planar velocity over the actuator's period of a ground robot set going at (vx, vy), body
-        frame, that the ground's friction then slows down; (vx, vy) itself off the ground."""
+        frame, that the ground's friction (on the ground) and Bullet's damping then slow down."""
         self._slid = None
-        if not self._on_ground():
-            return vx, vy
+        on_ground = self._on_ground()
         m = self.sim.model
-        mean, end = ground_friction.slide(vx, vy, ground_friction.ground_friction(self.friction),
-                                          float(np.linalg.norm(m.opt.gravity)), 1.0 / frequency,
-                                          1.0 / self.sim.clock.frequency)
-        self._slid = np.array(end)
-        return mean
+        mu = ground_friction.ground_friction(self.friction) if on_ground else 0.0
+        slid = ground_friction.slide(vx, vy, mu, float(np.linalg.norm(m.opt.gravity)), 1.0 / frequency,
+                                     1.0 / self.sim.clock.frequency, self.damping)
+        if on_ground:
+            self._slid = np.array(slid.end)
+        self._ticks = list(slid.ticks)
+        return slid.mean
+
+    # MORSE's body went at the speed set at the start of each tick, less what damping and friction took in
+    # the tick (kits.ground_friction): its sensors read it at the end of the tick, at its lowest. The servos
+    # hold the tick's mean (the robot goes as far as MORSE's); after the physics step the body is given the
+    # speed MORSE's had at that moment, in its own plane, for the sensors, and the held one back before the
+    # next step.
+    def sample_tick_end(self) -> bool:
+        """After a physics step: the body's planar velocity scaled to what MORSE's was at the tick's end.
+        Whether it changed."""
+        if not self._ticks:
+            return False
+        share = self._ticks.pop(0)
+        if share == 1.0 or not self.free:
+            return False
+        v = self._base_qvel()
+        held = v[:3].copy()
+        _, rot = self.pose()
+        body = rot.T @ held
+        body[:2] *= share
+        v[:3] = rot @ body
+        self._sampled = (v[:3].copy(), held)
+        return True
+
+    def resume_held(self) -> None:
+        """Before a physics step: the velocity held by the servos back, unless something set another since."""
+        if self._sampled is None:
+            return
+        sampled, held = self._sampled
+        self._sampled = None
+        v = self._base_qvel()
+        if np.array_equal(v[:3], sampled):
+            v[:3] = held
 
     def coast(self, frequency: float) -> None:
         """No actuator sets the velocity this period (MORSE's Waypoint once arrived or stopped): a ground
@@ -153,12 +190,12 @@ class RobotHandle:
         self.sim.data.ctrl[self.servo] = [mean[0], mean[1], 0.0]
         self._follow.pop("base servos", None)
 
-    GROUND_MEMORY = 0.25  # s: a robot that touched the ground this long ago still rests on it (it hops)
+    GROUND_MEMORY = 0.25  # s: a robot that touched the ground this long ago still rests on it
 
     def _on_ground(self) -> bool:
         """Whether the robot rests on something that is not part of it (the ground, an object): it touched
-        it within GROUND_MEMORY (a robot driven sideways hops on its wheels, off the ground a tick in two;
-        MORSE's body rested on it)."""
+        it within GROUND_MEMORY (a robot bouncing over a bump, off the ground for a tick or two, still
+        rests on it)."""
         d = self.sim.data
         now = self.sim.clock.elapsed
         if d.ncon:
@@ -212,6 +249,7 @@ class RobotHandle:
         place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
         self._follow.clear()  # the velocity it had is gone
         self._slid = None
+        self._ticks, self._sampled = [], None
 
     def base_qpos(self) -> np.ndarray:
         """The free joint's 7 positions in qpos (a view)."""

@@ -211,6 +211,7 @@ class Simulation:
         cls = load_class(entry.component)
         handle = RobotHandle(self, entry.name, cls.Properties.model_validate(entry.properties))
         handle.friction = entry.friction
+        handle.damping = float(getattr(cls, "damping", (0.0, 0.0))[0])
         return RobotInfo(entry.name, entry.builder_name, handle)
 
     def _component(self, entry: ComponentEntry, robots: dict[str, RobotHandle]) -> ComponentRuntime:
@@ -500,6 +501,8 @@ class Simulation:
     def step(self) -> None:
         m, d = self.model, self.data
         t = self.clock.elapsed
+        for robot in self.robots:
+            robot.handle.resume_held()
         self.stability.remember(d)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
@@ -514,11 +517,15 @@ class Simulation:
             d.qpos[adr:adr + 7] = qpos
             d.qvel[dof:dof + 6] = 0.0
         self.pinned.clear()
+        sampled = [robot.handle.sample_tick_end() for robot in self.robots]
         self.clock.tick()
         t = self.clock.elapsed
         due = [c for c in self.sensors if c.active and c.schedule.due(t)]
         if due:
             mujoco.mj_kinematics(m, d)
+            if any(sampled):  # the velocities the sensors read (d.cvel) follow the ones just sampled
+                mujoco.mj_comPos(m, d)
+                mujoco.mj_comVel(m, d)
             now = self.clock.now()
             for comp in due:
                 self._tick_sensor(comp, now)

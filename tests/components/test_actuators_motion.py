@@ -14,11 +14,13 @@ from morsec.kits import ground_friction
 from morsec.testing import simulate
 
 MU, G = ground_friction.ground_friction(None), 9.81
+ATRV_DAMPING = 0.02  # the ATRV's Bullet damping (components/robots/atrv)
 
 
 def morse_tick(vx: float, vy: float, w: float) -> tuple[float, float, float]:
-    """What MORSE's robot made of (vx, vy, w) over a 60 Hz tick: its mean velocity, friction taken off."""
-    return ground_friction.turned(vx, vy, w, ground_friction.slide(vx, vy, MU, G, 1 / 60, 1 / 60)[0])
+    """What MORSE's robot made of (vx, vy, w) over a 60 Hz tick: its mean velocity, friction and damping
+    taken off."""
+    return ground_friction.turned(vx, vy, w, ground_friction.slide(vx, vy, MU, G, 1 / 60, 1 / 60, ATRV_DAMPING).mean)
 
 
 def atrv(motion: str, objects: str = "", locks: str = "[]") -> str:

@@ -18,7 +18,7 @@ from morsec.testing import simulate
 ROBOTS = {
     "segwayrmp400": ("SegwayRMP400", 118.0, False),
     "b21": ("B21", 122.0, False),
-    "morsy": ("Morsy", 8.0, False),
+    "morsy": ("Morsy", 15.0, False),
     "hummer": ("Hummer", 10.0, False),
     "quadrotor": ("Quadrotor", 1.0, False),
     "submarine": ("Submarine", 470.0, True),
