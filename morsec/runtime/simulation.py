@@ -163,6 +163,9 @@ class Simulation:
         try:
             self.robots = [self._robot(r) for r in manifest.robots]
             handles = {r.name: r.handle for r in self.robots}
+            self._handles = list(handles.values())
+            self._geom_robot = self._robots_of_geoms()
+            self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
         except MorsecError as err:
             self.poller.close()
@@ -293,7 +296,35 @@ class Simulation:
                 out.append(SceneObject(entry.fqn, body, "component", dict(entry.tags)))
         return out
 
+    def _robots_of_geoms(self) -> np.ndarray | None:
+        """The index in self.robots of the robot each geom is part of (-1: none); None if robots nest (each
+        then looks for its own contacts)."""
+        owner = np.full(self.model.ngeom, -1, dtype=int)
+        for index, robot in enumerate(self.robots):
+            own = robot.handle._own_geoms
+            if np.any(owner[own] >= 0):
+                return None
+            owner[own] = index
+            robot.handle.index = index
+        return owner
+
     # ---------------------------------------------------------------- queries used by components
+    def touching(self) -> set[int] | None:
+        """The robots (their index in self.robots) that touch something not part of them in the contacts
+        MuJoCo found last: found once for all robots until the contacts change. None when robots nest."""
+        if self._touching is None and self._geom_robot is not None:
+            d = self.data
+            n = d.ncon
+            if n:
+                owner = self._geom_robot
+                geoms = d.contact.geom[:n]
+                first, second = owner[geoms[:, 0]], owner[geoms[:, 1]]
+                between = first != second
+                self._touching = set(first[between].tolist()) | set(second[between].tolist())
+            else:
+                self._touching = set()
+        return self._touching
+
     def objects_with(self, tag: str) -> list[SceneObject]:
         """Robots and objects whose property `tag` is truthy (or whose Type is `tag`)."""
         return [o for o in self.objects if o.has(tag)]
@@ -381,6 +412,7 @@ class Simulation:
         self.model.body_pos[:] = body_pos
         self.model.body_quat[:] = body_quat
         mujoco.mj_forward(self.model, self.data)
+        self._touching = None
         for comp in self.components:
             try:
                 comp.instance.reset()
@@ -457,8 +489,7 @@ class Simulation:
                         self.poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
                         continue
-                self.frame()
-                self._flush()
+                self.frame()  # ends with a flush
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
@@ -501,9 +532,11 @@ class Simulation:
     def step(self) -> None:
         m, d = self.model, self.data
         t = self.clock.elapsed
-        for robot in self.robots:
-            robot.handle.resume_held()
+        handles = self._handles
+        for handle in handles:
+            handle.resume_held()
         self.stability.remember(d)
+        self._touching = None  # contacts may have changed since the last frame (a service's reset, recover)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
@@ -513,17 +546,22 @@ class Simulation:
         else:
             d.qvel[:] = 0.0
             mujoco.mj_forward(m, d)
-        for adr, dof, qpos in (*self.frozen.values(), *self.pinned.values()):
-            d.qpos[adr:adr + 7] = qpos
-            d.qvel[dof:dof + 6] = 0.0
-        self.pinned.clear()
-        sampled = [robot.handle.sample_tick_end() for robot in self.robots]
+        self._touching = None
+        if self.frozen or self.pinned:
+            for adr, dof, qpos in (*self.frozen.values(), *self.pinned.values()):
+                d.qpos[adr:adr + 7] = qpos
+                d.qvel[dof:dof + 6] = 0.0
+            self.pinned.clear()
+        sampled = False
+        for handle in handles:
+            if handle.sample_tick_end():
+                sampled = True
         self.clock.tick()
         t = self.clock.elapsed
         due = [c for c in self.sensors if c.active and c.schedule.due(t)]
         if due:
             mujoco.mj_kinematics(m, d)
-            if any(sampled):  # the velocities the sensors read (d.cvel) follow the ones just sampled
+            if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
                 mujoco.mj_comPos(m, d)
                 mujoco.mj_comVel(m, d)
             now = self.clock.now()
