@@ -65,11 +65,13 @@ class RobotHandle:
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
         self.damping = 0.0  # Blender's linear damping of its body (the robot class's `damping`)
         self._slid: tuple[float, float] | None = None  # (vx, vy) at the end of the last interval slid (coast)
-        self._ticks: list[float] = []  # speed at the end of each tick to come, as a share of the held one
+        # speed at the end of each tick to come, as a share of the held one (sample_tick_end; empty: none to
+        # sample, all at the held speed)
+        self.ticks: list[float] = []
         self._gravity = float(np.linalg.norm(m.opt.gravity))
         # the last slide computed and its inputs: a command held unchanged slides the same way every tick
         self._last_slide: tuple[tuple, ground_friction.Slide, list[float]] | None = None
-        self._sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
+        self.sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
         self._touched: float | None = None  # simulated s: when it last touched something not its own
         self._bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
         self._masses = m.body_mass[self._bodies].copy()
@@ -98,7 +100,7 @@ class RobotHandle:
         linear = bounded_floats(linear, MAX_SPEED, "a linear speed (m/s)")
         angular = bounded_floats(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
-            self._ticks = []
+            self.ticks = []
             if self.servo:
                 d.ctrl[self.servo] = 0.0
                 self._follow.pop("base servos", None)
@@ -155,7 +157,7 @@ class RobotHandle:
         _, slid, ticks = self._last_slide
         if on_ground:
             self._slid = slid.end
-        self._ticks = ticks.copy()
+        self.ticks = ticks.copy()
         return slid.mean
 
     # MORSE's body went at the speed set at the start of each tick, less what damping and friction took in
@@ -166,9 +168,9 @@ class RobotHandle:
     def sample_tick_end(self) -> bool:
         """After a physics step: the body's planar velocity scaled to what MORSE's was at the tick's end.
         Whether it changed."""
-        if not self._ticks:
+        if not self.ticks:
             return False
-        share = self._ticks.pop(0)
+        share = self.ticks.pop(0)
         if share == 1.0 or not self.free:
             return False
         v = self._base_qvel()
@@ -177,15 +179,15 @@ class RobotHandle:
         body = rot.T @ held
         body[:2] *= share
         v[:3] = rot @ body
-        self._sampled = (v[:3].copy(), held)
+        self.sampled = (v[:3].copy(), held)
         return True
 
     def resume_held(self) -> None:
         """Before a physics step: the velocity held by the servos back, unless something set another since."""
-        if self._sampled is None:
+        if self.sampled is None:
             return
-        sampled, held = self._sampled
-        self._sampled = None
+        sampled, held = self.sampled
+        self.sampled = None
         v = self._base_qvel()
         if np.array_equal(v[:3], sampled):
             v[:3] = held
@@ -281,7 +283,7 @@ class RobotHandle:
         place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
         self._follow.clear()  # the velocity it had is gone
         self._slid = None
-        self._ticks, self._sampled = [], None
+        self.ticks, self.sampled = [], None
 
     def base_qpos(self) -> np.ndarray:
         """The free joint's 7 positions in qpos (a view)."""

@@ -296,7 +296,7 @@ class Simulation:
                 out.append(SceneObject(entry.fqn, body, "component", dict(entry.tags)))
         return out
 
-    def _robots_of_geoms(self) -> np.ndarray | None:
+    def _robots_of_geoms(self) -> list[int] | None:
         """The index in self.robots of the robot each geom is part of (-1: none); None if robots nest (each
         then looks for its own contacts)."""
         owner = np.full(self.model.ngeom, -1, dtype=int)
@@ -306,23 +306,22 @@ class Simulation:
                 return None
             owner[own] = index
             robot.handle.index = index
-        return owner
+        return owner.tolist()
 
     # ---------------------------------------------------------------- queries used by components
     def touching(self) -> set[int] | None:
         """The robots (their index in self.robots) that touch something not part of them in the contacts
         MuJoCo found last: found once for all robots until the contacts change. None when robots nest."""
         if self._touching is None and self._geom_robot is not None:
-            d = self.data
-            n = d.ncon
+            touching = set()
+            n = self.data.ncon
             if n:
                 owner = self._geom_robot
-                geoms = d.contact.geom[:n]
-                first, second = owner[geoms[:, 0]], owner[geoms[:, 1]]
-                between = first != second
-                self._touching = set(first[between].tolist()) | set(second[between].tolist())
-            else:
-                self._touching = set()
+                for first, second in self.data.contact.geom[:n].tolist():  # a few contacts: no numpy
+                    if owner[first] != owner[second]:
+                        touching.add(owner[first])
+                        touching.add(owner[second])
+            self._touching = touching
         return self._touching
 
     def objects_with(self, tag: str) -> list[SceneObject]:
@@ -534,7 +533,8 @@ class Simulation:
         t = self.clock.elapsed
         handles = self._handles
         for handle in handles:
-            handle.resume_held()
+            if handle.sampled is not None:
+                handle.resume_held()
         self.stability.remember(d)
         self._touching = None  # contacts may have changed since the last frame (a service's reset, recover)
         for comp in self.actuators:
@@ -554,7 +554,7 @@ class Simulation:
             self.pinned.clear()
         sampled = False
         for handle in handles:
-            if handle.sample_tick_end():
+            if handle.ticks and handle.sample_tick_end():
                 sampled = True
         self.clock.tick()
         t = self.clock.elapsed
@@ -652,6 +652,7 @@ class Stability:
     BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
     BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
     BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
+    assert BAD_QVEL == BAD_QPOS + 1 and BAD_QACC == BAD_QPOS + 2
 
     def __init__(self, model, data, initial_qpos: np.ndarray):
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
@@ -668,8 +669,7 @@ class Stability:
         self.reported: set[int] = set()
 
     def _count(self) -> int:
-        n = self.numbers
-        return n[self.BAD_QPOS] + n[self.BAD_QVEL] + n[self.BAD_QACC]
+        return sum(self.numbers[self.BAD_QPOS:self.BAD_QACC + 1].tolist())  # the three follow one another
 
     def remember(self, data) -> None:
         np.copyto(self.qpos, data.qpos)
