@@ -77,6 +77,8 @@ class RobotHandle:
         self._masses = m.body_mass[self._bodies].copy()
         self._own_geoms = np.isin(m.geom_bodyid, self._bodies)  # the geoms of its bodies
         self.index = -1  # its place among the simulation's robots (see Simulation.touching)
+        # views of its base's world position and row-major rotation in MjData (whose arrays stay put)
+        self._xpos, self._xmat = sim.data.xpos[self.body_id], sim.data.xmat[self.body_id]
 
     @property
     def free(self) -> bool:
@@ -246,8 +248,7 @@ class RobotHandle:
         if state is None:
             state = self._follow[key] = _Follow()
         previous, mark = state.command, state.mark
-        d = self.sim.data
-        now = (self.sim.clock.elapsed, d.xpos[self.body_id].tolist(), d.xmat[self.body_id].tolist())
+        now = (self.sim.clock.elapsed, self._xpos.tolist(), self._xmat.tolist())
         state.command, state.mark = command, now
         t0, t1, t2 = state.trim
         if previous is None or mark is None or command != previous:
@@ -264,9 +265,10 @@ class RobotHandle:
         if state.held >= max(settle, 2) and dt > 0:  # the last interval ran under this command throughout
             v0, v1, v2 = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
             gain, bound = self.TRIM_GAIN, self.TRIM_LIMIT
-            t0 = _clip(t0 + gain * (c0 - v0), bound + fraction * abs(c0))
-            t1 = _clip(t1 + gain * (c1 - v1), bound + fraction * abs(c1))
-            t2 = _clip(t2 + gain * (c2 - v2), bound + fraction * abs(c2))
+            limit0, limit1, limit2 = bound + fraction * abs(c0), bound + fraction * abs(c1), bound + fraction * abs(c2)
+            t0 = min(max(t0 + gain * (c0 - v0), -limit0), limit0)
+            t1 = min(max(t1 + gain * (c1 - v1), -limit1), limit1)
+            t2 = min(max(t2 + gain * (c2 - v2), -limit2), limit2)
             state.trim = (t0, t1, t2)
         return c0 + t0, c1 + t1, c2 + t2
 
@@ -387,10 +389,6 @@ class _Follow:
 
 def _sign(x: float) -> int:
     return (x > 0.0) - (x < 0.0)
-
-
-def _clip(x: float, limit: float) -> float:
-    return min(max(x, -limit), limit)
 
 
 def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[float, float, float]:

@@ -317,7 +317,7 @@ class Simulation:
             n = self.data.ncon
             if n:
                 owner = self._geom_robot
-                for first, second in self.data.contact.geom[:n].tolist():  # a few contacts: no numpy
+                for first, second in self.data.contact.geom.tolist():  # ncon of them, a few a robot: no numpy
                     if owner[first] != owner[second]:
                         touching.add(owner[first])
                         touching.add(owner[second])
@@ -535,7 +535,7 @@ class Simulation:
         for handle in handles:
             if handle.sampled is not None:
                 handle.resume_held()
-        self.stability.remember(d)
+        self.stability.remember()
         self._touching = None  # contacts may have changed since the last frame (a service's reset, recover)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
@@ -659,6 +659,7 @@ class Stability:
         self.initial_qpos = initial_qpos
         self.qpos = data.qpos.copy()  # the state before the frame
         self.qvel = data.qvel.copy()
+        self.data_qpos, self.data_qvel = data.qpos, data.qvel  # views of MjData's (whose arrays stay put)
         self.numbers = data.warning.number  # a view of MuJoCo's warning counters: reading it costs nothing
         self.warnings = self._count()
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
@@ -671,9 +672,9 @@ class Stability:
     def _count(self) -> int:
         return sum(self.numbers[self.BAD_QPOS:self.BAD_QACC + 1].tolist())  # the three follow one another
 
-    def remember(self, data) -> None:
-        np.copyto(self.qpos, data.qpos)
-        np.copyto(self.qvel, data.qvel)
+    def remember(self) -> None:
+        np.copyto(self.qpos, self.data_qpos)
+        np.copyto(self.qvel, self.data_qvel)
 
     def check(self, model, data) -> None:
         count = self._count()
