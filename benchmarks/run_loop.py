@@ -21,7 +21,7 @@ Prints both wall times, their ratio, the overhead per frame (split into the loop
 with every component deactivated, and the components' ticks) and the real-time factors. --callgrind
 counts instructions instead (valgrind's callgrind, which machine load does not change): each side runs in
 a child process twice, for --duration and for twice as long, and the difference is the instructions of
---duration's frames (start-up cancels out).
+--duration's frames (start-up cancels out), with one OpenBLAS thread (see callgrind_frames).
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ import argparse
 import cProfile
 import io
 import json
+import os
 import pstats
 import re
 import subprocess
@@ -112,7 +113,11 @@ def callgrind_frames(build: Path, side: str, duration: float) -> int:
         with tempfile.TemporaryDirectory() as out:
             cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}/cg.%p", sys.executable, __file__,
                    "--child", side, "--build", str(build), "--duration", repr(seconds)]
-            result = subprocess.run(cmd, capture_output=True, text=True)
+            # OpenBLAS's idle worker threads (numpy's, in both sides' processes) would be counted too: valgrind
+            # runs one thread at a time and gives them a turn at every system call of the main thread, where
+            # they spin; with one BLAS thread there are none (neither loop calls BLAS)
+            env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+            result = subprocess.run(cmd, capture_output=True, text=True, env=env)
             if result.returncode != 0:
                 raise SystemExit(f"failed under callgrind: {' '.join(cmd)}\n{result.stderr[-2000:]}")
             return sum(int(m) for m in re.findall(r"Collected : (\d+)", result.stderr))

@@ -14,3 +14,16 @@ def bounded(values, limit: float, what: str) -> np.ndarray:
         shown = np.array2string(array, threshold=6, precision=6)
         raise ValueError(f"{what} must be finite and within ±{limit:g}, got {shown}")
     return array
+
+
+def bounded_floats(values, limit: float, what: str) -> tuple[float, ...]:
+    """bounded's check, the values as a tuple of floats: cheaper than an array for the few numbers of a
+    command given every tick."""
+    try:
+        floats = tuple(map(float, values))
+    except (TypeError, ValueError):
+        return tuple(bounded(values, limit, what).tolist())  # bounded's error for what is not numbers
+    for value in floats:
+        if not abs(value) <= limit:  # NaN fails the comparison too
+            bounded(floats, limit, what)
+    return floats

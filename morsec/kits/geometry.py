@@ -74,6 +74,7 @@ def fmt_vec(values) -> str:
 
 # Below this, cos(pitch) is taken for 0 (pitch +-90 degrees): Blender's threshold, 16 float epsilons
 GIMBAL_LOCK = 16 * 1.1920929e-07
+_HALF_THREE_PI = 1.5 * math.pi - 1e-9  # below it, rounding cannot make the two sums compare otherwise
 
 
 def euler_of_xmat(m) -> tuple[float, float, float]:
@@ -87,6 +88,10 @@ def euler_of_xmat(m) -> tuple[float, float, float]:
     if cy <= GIMBAL_LOCK:
         return math.atan2(-m[5], m[4]), math.atan2(-r20, cy), 0.0
     first = (math.atan2(r21, r22), math.atan2(-r20, cy), math.atan2(r10, r00))
+    # each angle of the second triple is pi less the first's in absolute value: its sum is 3 pi less the
+    # first's, the larger one when the first's is clearly below 3 pi / 2 (no need to compute it then)
+    if abs(first[0]) + abs(first[1]) + abs(first[2]) < _HALF_THREE_PI:
+        return first
     second = (math.atan2(-r21, -r22), math.atan2(-r20, -cy), math.atan2(-r10, -r00))
     if abs(first[0]) + abs(first[1]) + abs(first[2]) > abs(second[0]) + abs(second[1]) + abs(second[2]):
         return second

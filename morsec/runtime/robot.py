@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import numpy as np
 
 from morsec.constants import MAX_FORCE, MAX_POSITION, MAX_SPEED
 from morsec.kits import ground_friction, mjcf_names
-from morsec.kits.bounds import bounded
-from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix
+from morsec.kits.bounds import bounded, bounded_floats
+from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix, transpose_apply
 
 
 def free_joint(model, body: int) -> tuple[int, int] | None:
@@ -54,16 +56,29 @@ class RobotHandle:
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
+        # where apply_speed writes the servos' targets in d.ctrl: a slice when they follow one another
+        self._ctrl: slice | list[int] | None = None
+        if self.servo:
+            consecutive = self.servo == list(range(self.servo[0], self.servo[0] + len(self.servo)))
+            self._ctrl = slice(self.servo[0], self.servo[-1] + 1) if consecutive else self.servo
         self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
         self.damping = 0.0  # Blender's linear damping of its body (the robot class's `damping`)
-        self._slid: np.ndarray | None = None  # (vx, vy) at the end of the last interval slid (see coast)
-        self._ticks: list[float] = []  # speed at the end of each tick to come, as a share of the held one
-        self._sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
+        self._slid: tuple[float, float] | None = None  # (vx, vy) at the end of the last interval slid (coast)
+        # speed at the end of each tick to come, as a share of the held one (sample_tick_end; empty: none to
+        # sample, all at the held speed)
+        self.ticks: list[float] = []
+        self._gravity = float(np.linalg.norm(m.opt.gravity))
+        # the last slide computed and its inputs: a command held unchanged slides the same way every tick
+        self._last_slide: tuple[tuple, ground_friction.Slide, list[float]] | None = None
+        self.sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
         self._touched: float | None = None  # simulated s: when it last touched something not its own
         self._bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
         self._masses = m.body_mass[self._bodies].copy()
         self._own_geoms = np.isin(m.geom_bodyid, self._bodies)  # the geoms of its bodies
+        self.index = -1  # its place among the simulation's robots (see Simulation.touching)
+        # views of its base's world position and row-major rotation in MjData (whose arrays stay put)
+        self._xpos, self._xmat = sim.data.xpos[self.body_id], sim.data.xmat[self.body_id]
 
     @property
     def free(self) -> bool:
@@ -84,22 +99,22 @@ class RobotHandle:
         on their body at once, as MORSE's, the servos then hold it, trimmed: see follow). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
         d = self.sim.data
-        linear = bounded(linear, MAX_SPEED, "a linear speed (m/s)")
-        angular = bounded(angular, MAX_SPEED, "an angular speed (rad/s)")
+        linear = bounded_floats(linear, MAX_SPEED, "a linear speed (m/s)")
+        angular = bounded_floats(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
-            self._ticks = []
+            self.ticks = []
             if self.servo:
                 d.ctrl[self.servo] = 0.0
                 self._follow.pop("base servos", None)
             self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
             return
         if self.servo:
-            planar = [linear[0], linear[1], angular[2]]
+            planar = (linear[0], linear[1], angular[2])
             if self.free and self.ground:
                 # what MORSE's ground friction left of the command over the period (kits.ground_friction)
-                planar = list(ground_friction.turned(linear[0], linear[1], angular[2],
-                                                     self._slide(linear[0], linear[1], frequency)))
-            d.ctrl[self.servo] = self.follow("base servos", planar)
+                planar = ground_friction.turned(linear[0], linear[1], angular[2],
+                                                self._slide(linear[0], linear[1], frequency))
+            d.ctrl[self._ctrl] = self.follow("base servos", planar)
             if self.free and self.ground and self._follow["base servos"].held == 0:
                 # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
                 # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
@@ -133,13 +148,18 @@ class RobotHandle:
         frame, that the ground's friction (on the ground) and Bullet's damping then slow down."""
         self._slid = None
         on_ground = self._on_ground()
-        m = self.sim.model
         mu = ground_friction.ground_friction(self.friction) if on_ground else 0.0
-        slid = ground_friction.slide(vx, vy, mu, float(np.linalg.norm(m.opt.gravity)), 1.0 / frequency,
-                                     1.0 / self.sim.clock.frequency, self.damping)
+        key = (vx, vy, mu, frequency, self.sim.clock.frequency, self.damping)
+        if self._last_slide is None or self._last_slide[0] != key:
+            slid = ground_friction.slide(vx, vy, mu, self._gravity, 1.0 / frequency,
+                                         1.0 / self.sim.clock.frequency, self.damping)
+            # ticks that end at the held speed leave it as it is (sample_tick_end): none to keep then
+            ticks = [] if all(share == 1.0 for share in slid.ticks) else list(slid.ticks)
+            self._last_slide = (key, slid, ticks)
+        _, slid, ticks = self._last_slide
         if on_ground:
-            self._slid = np.array(slid.end)
-        self._ticks = list(slid.ticks)
+            self._slid = slid.end
+        self.ticks = ticks.copy()
         return slid.mean
 
     # MORSE's body went at the speed set at the start of each tick, less what damping and friction took in
@@ -150,9 +170,9 @@ class RobotHandle:
     def sample_tick_end(self) -> bool:
         """After a physics step: the body's planar velocity scaled to what MORSE's was at the tick's end.
         Whether it changed."""
-        if not self._ticks:
+        if not self.ticks:
             return False
-        share = self._ticks.pop(0)
+        share = self.ticks.pop(0)
         if share == 1.0 or not self.free:
             return False
         v = self._base_qvel()
@@ -161,15 +181,15 @@ class RobotHandle:
         body = rot.T @ held
         body[:2] *= share
         v[:3] = rot @ body
-        self._sampled = (v[:3].copy(), held)
+        self.sampled = (v[:3].copy(), held)
         return True
 
     def resume_held(self) -> None:
         """Before a physics step: the velocity held by the servos back, unless something set another since."""
-        if self._sampled is None:
+        if self.sampled is None:
             return
-        sampled, held = self._sampled
-        self._sampled = None
+        sampled, held = self.sampled
+        self.sampled = None
         v = self._base_qvel()
         if np.array_equal(v[:3], sampled):
             v[:3] = held
@@ -185,7 +205,7 @@ class RobotHandle:
             return
         slid = self._slid
         mean = self._slide(float(slid[0]), float(slid[1]), frequency)
-        if self._slid is None or not np.any(self._slid):
+        if self._slid is None or not any(self._slid):
             self._slid = None  # stopped (or lifted off): from now on held still
         self.sim.data.ctrl[self.servo] = [mean[0], mean[1], 0.0]
         self._follow.pop("base servos", None)
@@ -198,7 +218,11 @@ class RobotHandle:
         rests on it)."""
         d = self.sim.data
         now = self.sim.clock.elapsed
-        if d.ncon:
+        touching = self.sim.touching()  # the robots that do, by index (None: each robot looks for itself)
+        if touching is not None:
+            if self.index in touching:
+                self._touched = now
+        elif d.ncon:
             own = self._own_geoms
             if np.any(own[d.contact.geom1[:d.ncon]] != own[d.contact.geom2[:d.ncon]]):
                 self._touched = now
@@ -212,29 +236,41 @@ class RobotHandle:
     TRIM_GAIN = 0.5  # the part of the last interval's error added to the trim at each call
     TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + fraction |command| (a robot held by a wall stays gentle)
 
-    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> np.ndarray:
+    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> tuple[float, ...]:
         """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
         vertical for a ground robot): the command plus its trim. `key` names who drives (one trim each);
         the trim along an axis is dropped when the command changes direction there, all when teleported.
         It is corrected once the command has been held `settle` calls (what a robot still speeding up
-        misses is no slip: counted, it would wind the trim up)."""
-        command = np.asarray(command, float)
-        state = self._follow.setdefault(key, _Follow())
+        misses is no slip: counted, it would wind the trim up). In plain floats: this runs at every tick of
+        every robot driven so, and numpy on 3-vectors costs more than the arithmetic."""
+        c0, c1, c2 = command = tuple(map(float, command))
+        state = self._follow.get(key)
+        if state is None:
+            state = self._follow[key] = _Follow()
         previous, mark = state.command, state.mark
-        now = (self.sim.clock.elapsed, *self.pose())
+        now = (self.sim.clock.elapsed, self._xpos.tolist(), self._xmat.tolist())
         state.command, state.mark = command, now
-        if previous is None or mark is None or not np.array_equal(command, previous):
+        t0, t1, t2 = state.trim
+        if previous is None or mark is None or command != previous:
             state.held = 0
             if previous is not None:
-                state.trim = np.where(np.sign(command) == np.sign(previous), state.trim, 0.0)
-            return command + state.trim
+                p0, p1, p2 = previous
+                t0 = t0 if _sign(c0) == _sign(p0) else 0.0
+                t1 = t1 if _sign(c1) == _sign(p1) else 0.0
+                t2 = t2 if _sign(c2) == _sign(p2) else 0.0
+                state.trim = (t0, t1, t2)
+            return c0 + t0, c1 + t1, c2 + t2
         state.held += 1
         dt = now[0] - mark[0]
         if state.held >= max(settle, 2) and dt > 0:  # the last interval ran under this command throughout
-            measured = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
-            limit = self.TRIM_LIMIT + fraction * np.abs(command)
-            state.trim = np.clip(state.trim + self.TRIM_GAIN * (command - measured), -limit, limit)
-        return command + state.trim
+            v0, v1, v2 = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
+            gain, bound = self.TRIM_GAIN, self.TRIM_LIMIT
+            limit0, limit1, limit2 = bound + fraction * abs(c0), bound + fraction * abs(c1), bound + fraction * abs(c2)
+            t0 = min(max(t0 + gain * (c0 - v0), -limit0), limit0)
+            t1 = min(max(t1 + gain * (c1 - v1), -limit1), limit1)
+            t2 = min(max(t2 + gain * (c2 - v2), -limit2), limit2)
+            state.trim = (t0, t1, t2)
+        return c0 + t0, c1 + t1, c2 + t2
 
     def displace(self, body_translation: np.ndarray, body_rotation: np.ndarray) -> None:
         if not self.free:
@@ -249,7 +285,7 @@ class RobotHandle:
         place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
         self._follow.clear()  # the velocity it had is gone
         self._slid = None
-        self._ticks, self._sampled = [], None
+        self.ticks, self.sampled = [], None
 
     def base_qpos(self) -> np.ndarray:
         """The free joint's 7 positions in qpos (a view)."""
@@ -345,23 +381,40 @@ class _Follow:
     """A command followed: the last one (vx, vy, wz), its trim, how many calls it is held, when and where."""
 
     def __init__(self):
-        self.command: np.ndarray | None = None
-        self.trim = np.zeros(3)
+        self.command: tuple[float, ...] | None = None
+        self.trim: tuple[float, ...] = (0.0, 0.0, 0.0)
         self.held = 0
-        self.mark: tuple[float, np.ndarray, np.ndarray] | None = None
+        self.mark: tuple[float, list[float], list[float]] | None = None  # time, position, row-major rotation
 
 
-def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> np.ndarray:
-    """(vx, vy, wz) of a body over an interval, from its poses at both ends: velocity in its own frame, turn
-    rate about its own z axis, or with `heading` about the world's vertical (a ground robot's heading)."""
-    delta = rot1 @ rot0.T if heading else rot0.T @ rot1
-    vee = np.array([delta[2, 1] - delta[1, 2], delta[0, 2] - delta[2, 0], delta[1, 0] - delta[0, 1]]) / 2
-    sin = float(np.linalg.norm(vee))
-    angle = float(np.arctan2(sin, (np.trace(delta) - 1.0) / 2.0))
-    rotvec = vee * (angle / sin) if sin > 1e-12 else vee
-    moved = pos1 - pos0
-    linear = (rot0.T @ moved + rot1.T @ moved) / 2.0  # in the frame half-way through
-    return np.array([linear[0], linear[1], rotvec[2]]) / dt
+def _sign(x: float) -> int:
+    return (x > 0.0) - (x < 0.0)
+
+
+def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[float, float, float]:
+    """(vx, vy, wz) of a body over an interval, from its poses at both ends (positions; rotations as
+    row-major 9-lists): velocity in its own frame, turn rate about its own z axis, or with `heading` about
+    the world's vertical (a ground robot's heading)."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = rot0
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = rot1
+    if heading:  # delta = rot1 rot0^T
+        d00, d11, d22 = b0 * a0 + b1 * a1 + b2 * a2, b3 * a3 + b4 * a4 + b5 * a5, b6 * a6 + b7 * a7 + b8 * a8
+        d01, d10 = b0 * a3 + b1 * a4 + b2 * a5, b3 * a0 + b4 * a1 + b5 * a2
+        d02, d20 = b0 * a6 + b1 * a7 + b2 * a8, b6 * a0 + b7 * a1 + b8 * a2
+        d12, d21 = b3 * a6 + b4 * a7 + b5 * a8, b6 * a3 + b7 * a4 + b8 * a5
+    else:  # delta = rot0^T rot1
+        d00, d11, d22 = a0 * b0 + a3 * b3 + a6 * b6, a1 * b1 + a4 * b4 + a7 * b7, a2 * b2 + a5 * b5 + a8 * b8
+        d01, d10 = a0 * b1 + a3 * b4 + a6 * b7, a1 * b0 + a4 * b3 + a7 * b6
+        d02, d20 = a0 * b2 + a3 * b5 + a6 * b8, a2 * b0 + a5 * b3 + a8 * b6
+        d12, d21 = a1 * b2 + a4 * b5 + a7 * b8, a2 * b1 + a5 * b4 + a8 * b7
+    vx, vy, vz = (d21 - d12) / 2, (d02 - d20) / 2, (d10 - d01) / 2
+    sin = math.sqrt(vx * vx + vy * vy + vz * vz)
+    angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)
+    wz = vz * (angle / sin) if sin > 1e-12 else vz
+    moved = (pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2])
+    m0, m1 = transpose_apply(rot0, moved), transpose_apply(rot1, moved)
+    # the linear velocity in the frame half-way through
+    return (m0[0] + m1[0]) / 2.0 / dt, (m0[1] + m1[1]) / 2.0 / dt, wz / dt
 
 
 def _descends(m, body: int, ancestor: int) -> bool:

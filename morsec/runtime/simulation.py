@@ -163,6 +163,9 @@ class Simulation:
         try:
             self.robots = [self._robot(r) for r in manifest.robots]
             handles = {r.name: r.handle for r in self.robots}
+            self._handles = list(handles.values())
+            self._geom_robot = self._robots_of_geoms()
+            self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
         except MorsecError as err:
             self.poller.close()
@@ -293,7 +296,34 @@ class Simulation:
                 out.append(SceneObject(entry.fqn, body, "component", dict(entry.tags)))
         return out
 
+    def _robots_of_geoms(self) -> list[int] | None:
+        """The index in self.robots of the robot each geom is part of (-1: none); None if robots nest (each
+        then looks for its own contacts)."""
+        owner = np.full(self.model.ngeom, -1, dtype=int)
+        for index, robot in enumerate(self.robots):
+            own = robot.handle._own_geoms
+            if np.any(owner[own] >= 0):
+                return None
+            owner[own] = index
+            robot.handle.index = index
+        return owner.tolist()
+
     # ---------------------------------------------------------------- queries used by components
+    def touching(self) -> set[int] | None:
+        """The robots (their index in self.robots) that touch something not part of them in the contacts
+        MuJoCo found last: found once for all robots until the contacts change. None when robots nest."""
+        if self._touching is None and self._geom_robot is not None:
+            touching = set()
+            n = self.data.ncon
+            if n:
+                owner = self._geom_robot
+                for first, second in self.data.contact.geom.tolist():  # ncon of them, a few a robot: no numpy
+                    if owner[first] != owner[second]:
+                        touching.add(owner[first])
+                        touching.add(owner[second])
+            self._touching = touching
+        return self._touching
+
     def objects_with(self, tag: str) -> list[SceneObject]:
         """Robots and objects whose property `tag` is truthy (or whose Type is `tag`)."""
         return [o for o in self.objects if o.has(tag)]
@@ -381,6 +411,7 @@ class Simulation:
         self.model.body_pos[:] = body_pos
         self.model.body_quat[:] = body_quat
         mujoco.mj_forward(self.model, self.data)
+        self._touching = None
         for comp in self.components:
             try:
                 comp.instance.reset()
@@ -457,8 +488,7 @@ class Simulation:
                         self.poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
                         continue
-                self.frame()
-                self._flush()
+                self.frame()  # ends with a flush
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
@@ -501,9 +531,12 @@ class Simulation:
     def step(self) -> None:
         m, d = self.model, self.data
         t = self.clock.elapsed
-        for robot in self.robots:
-            robot.handle.resume_held()
-        self.stability.remember(d)
+        handles = self._handles
+        for handle in handles:
+            if handle.sampled is not None:
+                handle.resume_held()
+        self.stability.remember()
+        self._touching = None  # contacts may have changed since the last frame (a service's reset, recover)
         for comp in self.actuators:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
@@ -513,17 +546,22 @@ class Simulation:
         else:
             d.qvel[:] = 0.0
             mujoco.mj_forward(m, d)
-        for adr, dof, qpos in (*self.frozen.values(), *self.pinned.values()):
-            d.qpos[adr:adr + 7] = qpos
-            d.qvel[dof:dof + 6] = 0.0
-        self.pinned.clear()
-        sampled = [robot.handle.sample_tick_end() for robot in self.robots]
+        self._touching = None
+        if self.frozen or self.pinned:
+            for adr, dof, qpos in (*self.frozen.values(), *self.pinned.values()):
+                d.qpos[adr:adr + 7] = qpos
+                d.qvel[dof:dof + 6] = 0.0
+            self.pinned.clear()
+        sampled = False
+        for handle in handles:
+            if handle.ticks and handle.sample_tick_end():
+                sampled = True
         self.clock.tick()
         t = self.clock.elapsed
         due = [c for c in self.sensors if c.active and c.schedule.due(t)]
         if due:
             mujoco.mj_kinematics(m, d)
-            if any(sampled):  # the velocities the sensors read (d.cvel) follow the ones just sampled
+            if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
                 mujoco.mj_comPos(m, d)
                 mujoco.mj_comVel(m, d)
             now = self.clock.now()
@@ -614,12 +652,14 @@ class Stability:
     BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
     BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
     BAD_QACC = int(mujoco.mjtWarning.mjWARN_BADQACC)
+    assert BAD_QVEL == BAD_QPOS + 1 and BAD_QACC == BAD_QPOS + 2
 
     def __init__(self, model, data, initial_qpos: np.ndarray):
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
         self.initial_qpos = initial_qpos
         self.qpos = data.qpos.copy()  # the state before the frame
         self.qvel = data.qvel.copy()
+        self.data_qpos, self.data_qvel = data.qpos, data.qvel  # views of MjData's (whose arrays stay put)
         self.numbers = data.warning.number  # a view of MuJoCo's warning counters: reading it costs nothing
         self.warnings = self._count()
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
@@ -630,12 +670,11 @@ class Stability:
         self.reported: set[int] = set()
 
     def _count(self) -> int:
-        n = self.numbers
-        return n[self.BAD_QPOS] + n[self.BAD_QVEL] + n[self.BAD_QACC]
+        return sum(self.numbers[self.BAD_QPOS:self.BAD_QACC + 1].tolist())  # the three follow one another
 
-    def remember(self, data) -> None:
-        np.copyto(self.qpos, data.qpos)
-        np.copyto(self.qvel, data.qvel)
+    def remember(self) -> None:
+        np.copyto(self.qpos, self.data_qpos)
+        np.copyto(self.qvel, self.data_qvel)
 
     def check(self, model, data) -> None:
         count = self._count()

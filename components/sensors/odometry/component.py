@@ -46,12 +46,13 @@ class Odometry(Sensor):
     # Poses are kept as plain floats (position 3-tuple, row-major rotation 9-list): this sensor ticks
     # every frame, and 3x3 numpy products cost more than the arithmetic itself.
     def start(self):
+        # views of the sensor's world position and rotation in MjData (whose arrays stay put)
+        self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
         self.origin_pos, self.origin_rot = self._pose()
         self.previous_pos, self.previous_rot = self.origin_pos, self.origin_rot
 
     def _pose(self):
-        data = self.sim.data
-        return tuple(data.xpos[self.body_id].tolist()), data.xmat[self.body_id].tolist()
+        return tuple(self.xpos.tolist()), self.xmat.tolist()
 
     def _in_origin(self, pos, rot):
         """A pose expressed in the sensor's initial frame."""

@@ -21,10 +21,13 @@ class Pose(Sensor):
         DataField("roll", 0.0, "float", "rotation about x, rad"),
     )
 
+    def start(self):
+        # views of the sensor's world position and rotation in MjData (whose arrays stay put)
+        self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
+
     def default_action(self):
-        data = self.sim.data
-        x, y, z = data.xpos[self.body_id].tolist()
-        roll, pitch, yaw = euler_of_xmat(data.xmat[self.body_id].tolist())
+        x, y, z = self.xpos.tolist()
+        roll, pitch, yaw = euler_of_xmat(self.xmat.tolist())
         local = self.local_data
         local["x"], local["y"], local["z"] = x, y, z
         local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
