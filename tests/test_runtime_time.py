@@ -351,6 +351,20 @@ def test_fixed_step_a_sleep_after_a_stream_command_counts_from_it(launch):
     assert x1 - x0 == pytest.approx(1.0 - LOST, abs=0.05), (x0, x1)
 
 
+def test_fixed_step_a_sleep_does_not_count_from_another_clients_stream_command(launch):
+    """A sleep right after a message to an actuator stream counts from it (above), but not the sleep of a
+    client whose first request came after the message: pymorse opens its streams after its service
+    connection, so the message was another client's (a session that had just ended)."""
+    sim = launch(paced_sim)
+    with sim.stream("robot.motion") as motion:
+        motion.send('{"v": 0.0, "w": 0.0}\n')
+        time.sleep(0.05)  # a few frames, at the wall clock's pace after a stream command
+        with sim.client() as client:
+            t0 = client.ok("time", "now")
+            client.ok("time", "sleep", 0.5)
+            assert client.ok("time", "now") - t0 >= 0.5 - 1e-6
+
+
 def test_sigterm_exits_0(launch):
     sim = launch(lockstep_sim)
     sim.signal(signal.SIGTERM)
