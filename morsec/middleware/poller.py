@@ -40,8 +40,9 @@ class Poller:
 
     def close(self) -> None:
         for key in list(self.selector.get_map().values()):
+            sock = key.fileobj  # always a socket: only sockets are registered
             try:
-                key.fileobj.close()
+                sock.close()  # type: ignore[union-attr]
             except OSError:
                 pass
         self.selector.close()
@@ -89,7 +90,7 @@ class Connection:
     def receive(self) -> bytes | None:
         """New bytes (at most about READ_LIMIT; the rest waits for the next poll), b'' when nothing is
         there, None when the peer closed or failed."""
-        chunks = []
+        chunks: list[bytes] = []
         size = 0
         while size < READ_LIMIT:
             try:
