@@ -332,6 +332,26 @@ def test_a_frames_messages_leave_before_the_answer_to_a_sleep_that_ended_at_it(l
             assert last == pytest.approx(now, abs=1e-6), (last, now)
 
 
+def real_time_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(strategy="best_effort"), "real_time"), tmp)
+
+
+def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_comes_a_frame_later(launch):
+    """The answer to a sleep that ends right after a client connected to a sensor stream waits for that
+    client (READER_POLL); the wait is not taken out of the next frame's: it still comes a frame's time
+    after the answer, so that a client calling `get()` once it has the answer gets it."""
+    sim = launch(real_time_sim)
+    with sim.client() as client:
+        for k in range(8):
+            time.sleep(k * DT / 8)  # at another moment between two frames each time
+            with sim.stream("robot.pose") as pose:  # a new client of a sensor stream
+                client.ok("time", "sleep", 0.01)
+                answered = time.monotonic()
+                pose.drain()  # the messages of the frame the sleep ended at
+                pose.json()
+                assert time.monotonic() - answered > 0.75 * DT, k
+
+
 def test_fixed_step_a_sleep_after_a_stream_command_counts_from_it(launch):
     """`motion.publish(v=1); sleep(1)` from a loop running free at a hundred times real time: the loop
     follows the wall clock after the command and the sleep counts from the frame it arrived at, so the

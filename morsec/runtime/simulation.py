@@ -463,7 +463,10 @@ class Simulation:
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
-                    self._pause(max(ANSWER_GAP, self.last_reader_opened + READER_POLL - time.perf_counter()))
+                    gap = max(ANSWER_GAP, self.last_reader_opened + READER_POLL - time.perf_counter())
+                    self._pause(gap)
+                    if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
+                        self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 self.time_services.wake()
                 self._flush()
                 self._wait(self._delay())
