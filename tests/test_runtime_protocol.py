@@ -7,6 +7,8 @@ from __future__ import annotations
 import csv
 import json
 import math
+import socket
+import statistics
 import time
 
 import pytest
@@ -160,6 +162,26 @@ def test_several_requests_in_one_write_and_one_request_in_several(sim, client):
     time.sleep(0.1)
     client.send("st_robots\n")
     assert client.line() == 'p1 SUCCESS ["robot", "rover"]'
+
+
+def test_a_request_written_right_after_another_is_not_held_back_by_the_client(sim):
+    """pymorse writes `rotate(...)` (from its thread pool) and `sleep(1)` back to back on one connection,
+    with Nagle's algorithm on: the kernel holds the second until the first is acknowledged. morsec
+    acknowledges at once (TCP_QUICKACK), not 40 ms later (a delayed acknowledgement): the sleep starts
+    with the command, not 2 or 3 frames after it."""
+    with socket.create_connection((sim.host, sim.service_port), timeout=10) as raw:  # Nagle's algorithm on, as pymorse's
+        reader = raw.makefile("rb")
+        for k in range(20):  # request, answer: the connection is past its first, always acknowledged, segments
+            raw.sendall(f"w{k} time mode\n".encode())
+            reader.readline()
+        delays = []
+        for k in range(7):
+            raw.sendall(f"s{k} time sleep [60]\n".encode())  # answered in a minute: nothing goes back now
+            start = time.monotonic()
+            raw.sendall(f"n{k} time now\n".encode())
+            assert reader.readline().startswith(f"n{k} SUCCESS".encode())
+            delays.append(time.monotonic() - start)
+    assert statistics.median(delays) < 0.02, delays
 
 
 def test_answers_go_to_the_asking_client(sim):

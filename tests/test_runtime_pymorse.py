@@ -25,6 +25,7 @@ from pymorse import Morse, MorseServiceFailed, MorseServicePreempted  # noqa: E4
 
 STRATEGIES = ["fixed_step", "best_effort"]
 LOST = friction_loss()
+DT = 1.0 / 60
 
 
 def pymorse_scene(strategy: str) -> dict:
@@ -129,6 +130,35 @@ def test_sync_services(morse):
     with pytest.raises(MorseServiceFailed, match="Stream unavailable"):
         morse.get_stream_port("robot.nothing")
     assert morse.rpc("simulation", "list_robots") == ["robot", "x", "x_001"]
+
+
+def test_a_command_on_a_stream_used_for_the_first_time_acts_a_frame_later(morse):
+    """MORSE's socket reader accepted a client at one tick of the actuator and read it from the next (its
+    accelerometer test: `motion.publish(go); sleep(0.01); accel.get()` reads the frame the command took
+    effect at, after the sleep's answer). pymorse connects a stream when it is first used."""
+    pose = morse.robot.pose
+    start = pose.get(timeout=10)["x"]
+    morse.robot.motion.publish({"v": 1.0, "w": 0.0})  # a new connection
+    morse.sleep(0.01)  # ends at the next frame, which has not read the command yet
+    assert pose.last()["x"] - start == pytest.approx(0.0, abs=0.2 * DT)  # (a robot just reset settles a little)
+    assert pose.get(timeout=10)["x"] - start == pytest.approx(DT, abs=0.2 * DT)  # the frame after: at 1 m/s
+    morse.robot.motion.publish({"v": 0.0, "w": 0.0})
+
+
+def test_a_stream_opened_right_before_a_sleep_has_a_message_when_the_sleep_ends(servers):
+    """pymorse's polling thread waits on the sockets it knew when it began waiting, 10 ms at a time: a
+    stream opened meanwhile is read at its next wait. The answer to a sleep leaves long enough after the
+    connection that the stream's messages have been read when it arrives: `last()` right after
+    `sim.sleep(0.01)` has the frame the sleep ended at (MORSE's drag and accelerometer tests)."""
+    for strategy, server in servers.items():
+        for _ in range(6):
+            with Morse("localhost", server.service_port) as morse:
+                pose = morse.robot.pose  # connects now
+                morse.sleep(0.01)
+                last = pose.last()  # (pytest's assertion rewriting must not look into pymorse's Component)
+                ended = morse.time() - DT  # `now` after the sleep: the frame after the one it ended at, or later
+                assert last is not None, strategy
+                assert last["timestamp"] >= ended - 1e-6, strategy
 
 
 def test_a_service_called_without_its_arguments_fails_as_in_morse(morse):

@@ -332,6 +332,26 @@ def test_a_frames_messages_leave_before_the_answer_to_a_sleep_that_ended_at_it(l
             assert last == pytest.approx(now, abs=1e-6), (last, now)
 
 
+def real_time_sim(tmp: Path) -> Morsec:
+    return Morsec(scene_file(tmp, scene(strategy="best_effort"), "real_time"), tmp)
+
+
+def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_comes_a_frame_later(launch):
+    """The answer to a sleep that ends right after a client connected to a sensor stream waits for that
+    client (READER_POLL); the wait is not taken out of the next frame's: it still comes a frame's time
+    after the answer, so that a client calling `get()` once it has the answer gets it."""
+    sim = launch(real_time_sim)
+    with sim.client() as client:
+        for k in range(8):
+            time.sleep(k * DT / 8)  # at another moment between two frames each time
+            with sim.stream("robot.pose") as pose:  # a new client of a sensor stream
+                client.ok("time", "sleep", 0.01)
+                answered = time.monotonic()
+                pose.drain()  # the messages of the frame the sleep ended at
+                pose.json()
+                assert time.monotonic() - answered > 0.75 * DT, k
+
+
 def test_fixed_step_a_sleep_after_a_stream_command_counts_from_it(launch):
     """`motion.publish(v=1); sleep(1)` from a loop running free at a hundred times real time: the loop
     follows the wall clock after the command and the sleep counts from the frame it arrived at, so the
@@ -349,6 +369,20 @@ def test_fixed_step_a_sleep_after_a_stream_command_counts_from_it(launch):
         pose.drain()
         x1 = pose.json()["x"]
     assert x1 - x0 == pytest.approx(1.0 - LOST, abs=0.05), (x0, x1)
+
+
+def test_fixed_step_a_sleep_does_not_count_from_another_clients_stream_command(launch):
+    """A sleep right after a message to an actuator stream counts from it (above), but not the sleep of a
+    client whose first request came after the message: pymorse opens its streams after its service
+    connection, so the message was another client's (a session that had just ended)."""
+    sim = launch(paced_sim)
+    with sim.stream("robot.motion") as motion:
+        motion.send('{"v": 0.0, "w": 0.0}\n')
+        time.sleep(0.05)  # a few frames, at the wall clock's pace after a stream command
+        with sim.client() as client:
+            t0 = client.ok("time", "now")
+            client.ok("time", "sleep", 0.5)
+            assert client.ok("time", "now") - t0 >= 0.5 - 1e-6
 
 
 def test_sigterm_exits_0(launch):

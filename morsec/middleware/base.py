@@ -44,6 +44,8 @@ class RunContext:
     stream_opened: Callable[[Any], None] = field(default=lambda connection: None)
     stream_heard: Callable[[Any], None] = field(default=lambda connection: None)
     stream_closed: Callable[[Any], None] = field(default=lambda connection: None)
+    # a client connected to a sensor stream: the answers to sleeps wait for its polling thread to see it
+    reader_opened: Callable[[], None] = field(default=lambda: None)
 
 
 class OutStream(Protocol):

@@ -81,14 +81,21 @@ class SocketStream(Server):
         super().__init__(poller, host, port, attempts=100 if hint_only else 1)
         self.component = component
         self.direction = direction
-        self.pending: dict | None = None  # last complete actuator message, not yet applied
+        self.pending: dict[Connection, dict] = {}  # each client's last complete actuator message, not yet applied
+        self.fresh: set[Connection] = set()  # clients that connected since the actuator's last tick
         self.context = context if direction == "IN" else None  # told of clients opening, sending, closing
+        self.reader_opened = context.reader_opened if context is not None and direction == "OUT" else None
 
     def accepted(self, conn: Connection) -> None:
         if self.context is not None:
+            self.fresh.add(conn)
             self.context.stream_opened(conn)
+        elif self.reader_opened is not None:
+            self.reader_opened()
 
     def dropped(self, conn: Connection) -> None:
+        self.pending.pop(conn, None)
+        self.fresh.discard(conn)
         if self.context is not None:
             self.context.stream_closed(conn)
 
@@ -113,10 +120,18 @@ class SocketStream(Server):
         if not isinstance(message, dict):
             log.warning("%s: ignored a message that is not a JSON object: %.80r", self.component, last)
             return
-        self.pending = message
+        self.pending[conn] = message
 
     def take(self) -> dict | None:
-        message, self.pending = self.pending, None
+        """The last complete message of the clients, at a tick of the actuator. A client that connected since
+        the previous tick is read from the next one on, as MORSE's socket reader did: it accepted a new client
+        at one tick and read it at the next (`motion = sim.robot.motion; motion.publish(cmd)` applies a frame
+        after the commands of a client that was connected already)."""
+        message = None
+        for conn in self.clients:  # in the order they connected: the last one read has the last word
+            if conn not in self.fresh and conn in self.pending:
+                message = self.pending.pop(conn)
+        self.fresh.clear()
         return message
 
     @property

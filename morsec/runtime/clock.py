@@ -62,8 +62,7 @@ class Clock:
                 return 0.0
             if not self._paced:  # from this frame on: the next one a frame's time later
                 self._paced = True
-                self.restart()
-                self._sim_anchor -= self.dt
+                self.restart_a_frame_later()
             lag = 0.0
         target = self._wall_anchor + (self.elapsed - self._sim_anchor) / self.scale
         remaining = target - _time.perf_counter()
@@ -77,8 +76,14 @@ class Clock:
         self.restart()
 
     def restart(self) -> None:
+        """The wall clock's pace from now: the next frame at once (it takes the loop from now on)."""
         self._wall_anchor = _time.perf_counter()
         self._sim_anchor = self.elapsed
+
+    def restart_a_frame_later(self) -> None:
+        """The wall clock's pace from now, the next frame a frame's time from now."""
+        self.restart()
+        self._sim_anchor -= self.dt
 
     def statistics(self) -> dict:
         variance = self._m2 / (self._n - 1) if self._n > 1 else 0.0

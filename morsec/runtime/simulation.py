@@ -35,6 +35,10 @@ CONVERSATION = 0.01  # s of wall time after a request during which the sockets a
 # wall-clock s between a frame's sensor messages and the answers to the sleeps that ended at it, so that a client
 # reading its sockets in any order (pymorse's polling thread) has the messages when it gets the answer
 ANSWER_GAP = 0.002
+# pymorse's polling thread waits on its sockets 10 ms at a time, and a socket it opens meanwhile joins at its next
+# wait: the answers to sleeps leave at least READER_POLL (wall clock) after a client connected to a sensor stream,
+# so that it has read the messages the stream sent it before (the frame its sleep ended at)
+READER_POLL = 0.015
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 
 
@@ -147,6 +151,7 @@ class Simulation:
                      if self.clock.strategy == "fixed_step" else None)
         self.last_stream_input = 0.0  # simulated s: when the last message to an actuator stream arrived
         self.last_stream_input_wall = -float("inf")  # ... and when, on the wall clock
+        self.last_reader_opened = -float("inf")  # wall clock: when a client last connected to a sensor stream
         # the frame's sensor messages, (streams, message) in the sensors' order, sent at the end of the frame
         self.outbox: list[tuple[list, Any]] = []
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
@@ -250,7 +255,7 @@ class Simulation:
         opts = self.options
         context = RunContext(self.poller, self.requests, opts.bind, Path(opts.output_dir), opts.port_base,
                              opts.service_port, stream_opened=self.stream_opened, stream_heard=self.stream_heard,
-                             stream_closed=self.stream_closed)
+                             stream_closed=self.stream_closed, reader_opened=self.reader_opened)
         used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services})
         try:
             for name in used:
@@ -390,6 +395,9 @@ class Simulation:
         if self.hold is not None and not (self.sync is not None and self.sync.engaged):
             self.hold.stream_opened(connection)
 
+    def reader_opened(self) -> None:
+        self.last_reader_opened = time.perf_counter()
+
     def stream_closed(self, connection) -> None:
         if self.hold is not None:
             self.hold.stream_closed(connection)
@@ -492,7 +500,10 @@ class Simulation:
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
-                    self._pause(ANSWER_GAP)
+                    gap = max(ANSWER_GAP, self.last_reader_opened + READER_POLL - time.perf_counter())
+                    self._pause(gap)
+                    if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
+                        self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 self.time_services.wake()
                 self._flush()
                 self._wait(self._delay())

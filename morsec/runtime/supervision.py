@@ -154,6 +154,7 @@ class TimeServices:
         self.numbering: dict[Any, Numbering | None] = {}  # client -> its numbered requests (None: not numbered)
         self.deferred: dict[Any, list] = {}  # client -> [(number, seconds, request, wall deadline)] not started
         self.woke: dict[Any, float] = {}  # client -> when (simulated s) a sleep of it last ended (numbered ones)
+        self.first: dict[Any, float] = {}  # client -> when (simulated s) its first request came: no sleep counts before
 
     def interrupt(self) -> None:
         pass
@@ -205,9 +206,13 @@ class TimeServices:
     def _after_stream_command(self, client) -> float | None:
         """fixed_step: a sleep that follows a message to an actuator stream by less than SLEEP_WITH_PREVIOUS
         (wall clock) counts from the frame that message arrived at (`publish(cmd); sleep(t)` measures t of
-        the command), not before the client's previous sleep ended; None: from now."""
+        the command), not before the client's previous sleep ended; None: from now, also when the message
+        came before the client's first request (another client's: pymorse opens its streams after its
+        service connection)."""
         sim = self.sim
         if sim.hold is None or _time.perf_counter() - sim.last_stream_input_wall > SLEEP_WITH_PREVIOUS:
+            return None
+        if sim.last_stream_input < self.first.get(client, -math.inf):
             return None
         return max(sim.last_stream_input, self.woke.get(client, sim.last_stream_input))
 
@@ -222,6 +227,8 @@ class TimeServices:
         """fixed_step: a request arrived (before it is handled): numbered ones may let a sleep start.
         Whether every request its client numbered before it has arrived (True when not numbered)."""
         client, number = request.client, request_number(request.id)
+        if client is not None:
+            self.first.setdefault(client, self.sim.clock.elapsed)
         if client is None or number is None:
             return True
         numbering = self.numbering.get(client, _UNSEEN)
@@ -310,6 +317,7 @@ class TimeServices:
         self.numbering.pop(client, None)
         self.deferred.pop(client, None)
         self.woke.pop(client, None)
+        self.first.pop(client, None)
 
 
 _UNSEEN: Any = object()
