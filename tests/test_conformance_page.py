@@ -40,10 +40,10 @@ def test_the_check_names_a_file_recorded_as_passing_that_fails_or_is_missing():
 
 
 def test_the_reason_is_unittests_first_failure_not_an_error_a_clients_thread_printed_before(tmp_path):
-    (tmp_path / "base__waypoint_testing.py.log").write_text(
+    (tmp_path / "base__gps_testing.py.log").write_text(
         "Exception in thread Thread-3:\nValueError: list.remove(x): x not in list\n"
         "FAIL\n======\nFAIL: test_waypoint_services (__main__.Waypoints_Test.test_waypoint_services)\n"
         "Traceback (most recent call last):\nAssertionError: 5.24 != 5.21 within 0.03 delta\n")
-    output = (f"logs: {tmp_path}\nbase/waypoint_testing.py                       2   2  ValueError: list.remove\n"
+    output = (f"logs: {tmp_path}\nbase/gps_testing.py                       2   2  ValueError: list.remove\n"
               "2 passed, 2 failed\n")
-    assert "| `base/waypoint_testing.py` | 2 | 2 | AssertionError: 5.24 != 5.21 within 0.03 delta |" in tool.page(output, ["base"])
+    assert "| `base/gps_testing.py` | 2 | 2 | AssertionError: 5.24 != 5.21 within 0.03 delta |" in tool.page(output, ["base"])

@@ -258,3 +258,62 @@ def test_stabilized_quadrotor_follows_morse_linear_model(quad, tmp_path):
         moved = np.array([pose(h)["x"] - (x3 + 2.0), pose(h)["y"] - y0])
         # 0.4 m in the direction of the robot's -y axis (it faces `yaw`)
         assert moved == pytest.approx(0.4 * np.array([math.sin(yaw), -math.cos(yaw)]), abs=0.2)
+
+
+def morse_stabilized_quadrotor(commands: list[tuple[float, float, float, float]], z0: float) -> np.ndarray:
+    """MORSE's StabilizedQuadrotor replayed, one row per tick (theta_c, phi_c, psi_c, h_c): its Filt2 filters
+    (their own integration), the XYZ Euler attitude, the thrust law, and the position moved by dt * v."""
+
+    class Filt2:
+        def __init__(self, wn, ksi):
+            self.wn, self.ksi, self.x, self.xn = wn, ksi, [0.0] * 4, [0.0, 0.0]
+
+        def simulate(self, u, dt):
+            x, wn, ksi = self.x, self.wn, self.ksi
+            self.xn[0] = x[0] + (x[3] + x[1]) * dt / 2.0
+            self.xn[1] = self.xn[1] + (x[2] + wn * wn * (u - x[0]) - 2.0 * ksi * wn * x[1]) * dt / 2.0
+            x[2] = wn * wn * (u - x[0]) - 2.0 * ksi * wn * x[1]
+            x[3], x[0], x[1] = x[1], self.xn[0], self.xn[1]
+
+    dt = 1.0 / 60
+    f_phi, f_theta, f_psi, f_h = Filt2(10.0, 0.7), Filt2(10.0, 0.7), Filt2(10.0, 0.7), Filt2(3.0, 0.5)
+    pos, v = np.array([0.0, 0.0, z0]), np.zeros(3)
+    out = []
+    for theta_c, phi_c, psi_c, h_c in commands:
+        f_phi.simulate(phi_c, dt)
+        f_theta.simulate(theta_c, dt)
+        f_psi.simulate(f_psi.x[0] - psi_c, dt)
+        f_h.simulate(h_c, dt)
+        (cx, sx), (cy, sy), (cz, sz) = ((math.cos(a), math.sin(a)) for a in (f_phi.x[0], f_theta.x[0], f_psi.x[0]))
+        rot = (np.array([[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]]) @ np.array([[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]])
+               @ np.array([[1, 0, 0], [0, cx, -sx], [0, sx, cx]]))
+        acc = rot @ np.array([0.0, 0.0, 10.0 + 9.0 * (h_c - pos[2]) - 2.0 * 0.7 * 3.0 * v[2]])
+        v = v + dt * (acc - np.array([0.0, 0.0, 10.0]))
+        pos = pos + dt * v
+        out.append(pos)
+    return np.array(out)
+
+
+def test_stabilized_quadrotor_is_morse_model_tick_by_tick(tmp_path):
+    """Every tick, the robot is where MORSE's own model puts it: climb, pitch, roll and turn commands in turn."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: quad
+    type: quad2012
+    translate: [0.0, 0.0, 1.0]
+    components:
+      - {name: pose, type: pose}
+      - {name: motion, type: stabilized_quadrotor}
+"""
+    commands = ([(0.0, 0.0, 0.0, 3.0)] * 40 + [(0.1, 0.0, 0.0, 3.0)] * 40 + [(0.0, -0.1, 0.0, 3.0)] * 40
+                + [(0.05, 0.0, 0.1, 2.0)] * 40)
+    expected = morse_stabilized_quadrotor(commands, z0=1.0)
+    with simulate(text, tmp_path) as h:
+        got = []
+        for theta_c, phi_c, psi_c, h_c in commands:
+            h.command("quad.motion", theta_c=theta_c, phi_c=phi_c, psi_c=psi_c, h_c=h_c)
+            h.step()
+            got.append([h.data("quad.pose")[k] for k in "xyz"])
+    assert np.abs(np.array(got) - expected).max() < 1e-6
+    assert np.ptp(expected, axis=0).min() > 0.4  # not a robot at rest: it moved along x, y and z

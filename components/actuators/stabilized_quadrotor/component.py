@@ -4,8 +4,8 @@ stabilised, driven kinematically (as MORSE's, the robot does not fly by its own 
 Per tick (dt = 1 / frequency):
 
 * roll and pitch follow phi_c and theta_c through second-order filters (natural frequency 10 rad/s,
-  damping 0.7); the yaw filter (same constants) is fed with its own output minus psi_c, so psi_c makes
-  the robot turn at about -psi_c * 10 / 1.4 rad/s (psi_c = 0.1: -0.71 rad/s, MORSE's behaviour);
+  damping 0.7, integrated as MORSE's Filt2); the yaw filter (same constants) is fed with its own output
+  minus psi_c, so psi_c makes the robot turn at about -psi_c * 10 / 1.4 rad/s (psi_c = 0.1: -0.71 rad/s);
 * the thrust acceleration along the robot's z axis is 10 + 9 (h_c - z) - 2 * 0.7 * 3 * v_z (m/s^2), z
   the robot's height; the velocity integrates that acceleration, turned into the world by the filtered
   attitude, minus 10 m/s^2 of gravity (theta_c = 0.1 accelerates forward at about 1 m/s^2);
@@ -23,15 +23,19 @@ from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 
 
 class SecondOrder:
-    """x'' = wn^2 (u - x) - 2 ksi wn x' (MORSE's Filt2), integrated by semi-implicit Euler."""
+    """x'' = wn^2 (u - x) - 2 ksi wn x', integrated as MORSE's Filt2 does: each step the position takes the
+    mean of the last two velocities, and the velocity the mean of the last acceleration and the one
+    computed now (from the state before the step)."""
 
     def __init__(self, wn: float, ksi: float, x: float = 0.0):
         self.wn, self.ksi = wn, ksi
         self.x, self.v = x, 0.0
+        self.last_v = self.last_a = 0.0
 
     def step(self, u: float, dt: float) -> float:
-        self.v += dt * (self.wn ** 2 * (u - self.x) - 2.0 * self.ksi * self.wn * self.v)
-        self.x += dt * self.v
+        a = self.wn ** 2 * (u - self.x) - 2.0 * self.ksi * self.wn * self.v
+        self.x, self.last_v = self.x + (self.last_v + self.v) * dt / 2.0, self.v
+        self.v, self.last_a = self.v + (self.last_a + a) * dt / 2.0, a
         return self.x
 
 
