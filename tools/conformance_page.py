@@ -46,6 +46,10 @@ ANALYSED = {
     "once with `get()` (the message must come after the sleep's answer) and once with `last()` (it must have come "
     "before); pymorse's polling thread reads its sockets in the order it opened them, and MORSE met both at "
     "Blender's pace, its sensors' messages milliseconds apart",
+    "base/attitude_testing.py": "flaky (about 1 run in 6): while pitching and yawing, the Orientation actuator "
+    "corrects the roll drift every few frames with a -0.5 rad/s kick; MORSE created the attitude sensors before it "
+    "and ran them in the same logic tick, reading the velocity it had just set, which kept the kick off the frames "
+    "the test reads; morsec's sensors read after the physics step, one decision behind",
     "robots/segway/rotated_segway.py": "MORSE's own CMakeLists did not run it (of the segway tests it ran only "
     "segway_vw); its figures were recorded while the Segway's FixTurningSpeed defaulted to 0: for the same command "
     "it expects 0.82 rad of turn where segway_vw, which MORSE ran, expects pi/2, and MORSE's Segway turns alike "
