@@ -107,6 +107,15 @@ def transpose_times(a, b) -> list[float]:
             a2 * b0 + a5 * b3 + a8 * b6, a2 * b1 + a5 * b4 + a8 * b7, a2 * b2 + a5 * b5 + a8 * b8]
 
 
+def times_transpose(a, b) -> list[float]:
+    """A Bᵀ for row-major 3x3 matrices given as 9-lists."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
+    return [a0 * b0 + a1 * b1 + a2 * b2, a0 * b3 + a1 * b4 + a2 * b5, a0 * b6 + a1 * b7 + a2 * b8,
+            a3 * b0 + a4 * b1 + a5 * b2, a3 * b3 + a4 * b4 + a5 * b5, a3 * b6 + a4 * b7 + a5 * b8,
+            a6 * b0 + a7 * b1 + a8 * b2, a6 * b3 + a7 * b4 + a8 * b5, a6 * b6 + a7 * b7 + a8 * b8]
+
+
 def transpose_apply(a, v) -> tuple[float, float, float]:
     """Aᵀ v for a row-major 3x3 A and a 3-vector v."""
     x, y, z = v

@@ -10,7 +10,14 @@ import numpy as np
 from morsec.constants import MAX_FORCE, MAX_POSITION, MAX_SPEED
 from morsec.kits import ground_friction, mjcf_names
 from morsec.kits.bounds import bounded, bounded_floats
-from morsec.kits.geometry import euler_to_quat, matrix_to_quat, quat_to_matrix, transpose_apply
+from morsec.kits.geometry import (
+    euler_to_quat,
+    matrix_to_quat,
+    quat_to_matrix,
+    times_transpose,
+    transpose_apply,
+    transpose_times,
+)
 
 
 def free_joint(model, body: int) -> tuple[int, int] | None:
@@ -73,9 +80,8 @@ class RobotHandle:
         self._last_slide: tuple[tuple, ground_friction.Slide, list[float]] | None = None
         self.sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
         self._touched: float | None = None  # simulated s: when it last touched something not its own
-        self._bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
-        self._masses = m.body_mass[self._bodies].copy()
-        self._own_geoms = np.isin(m.geom_bodyid, self._bodies)  # the geoms of its bodies
+        self.bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
+        self._masses = m.body_mass[self.bodies].copy()
         self.index = -1  # its place among the simulation's robots (see Simulation.touching)
         # views of its base's world position and row-major rotation in MjData (whose arrays stay put)
         self._xpos, self._xmat = sim.data.xpos[self.body_id], sim.data.xmat[self.body_id]
@@ -216,16 +222,9 @@ class RobotHandle:
         """Whether the robot rests on something that is not part of it (the ground, an object): it touched
         it within GROUND_MEMORY (a robot bouncing over a bump, off the ground for a tick or two, still
         rests on it)."""
-        d = self.sim.data
         now = self.sim.clock.elapsed
-        touching = self.sim.touching()  # the robots that do, by index (None: each robot looks for itself)
-        if touching is not None:
-            if self.index in touching:
-                self._touched = now
-        elif d.ncon:
-            own = self._own_geoms
-            if np.any(own[d.contact.geom1[:d.ncon]] != own[d.contact.geom2[:d.ncon]]):
-                self._touched = now
+        if self.index in self.sim.touching():
+            self._touched = now
         return self._touched is not None and now - self._touched <= self.GROUND_MEMORY
 
     # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
@@ -283,9 +282,7 @@ class RobotHandle:
         """Put the base at a world pose and stop it."""
         joint = (self.qpos_adr, self.qvel_adr) if self.qpos_adr is not None and self.qvel_adr is not None else None
         place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
-        self._follow.clear()  # the velocity it had is gone
-        self._slid = None
-        self.ticks, self.sampled = [], None
+        self.stop()
 
     def base_qpos(self) -> np.ndarray:
         """The free joint's 7 positions in qpos (a view)."""
@@ -293,11 +290,12 @@ class RobotHandle:
         return self.sim.data.qpos[self.qpos_adr:self.qpos_adr + 7]
 
     def stop(self) -> None:
-        """Stop the robot where it is, as set_pose does."""
+        """Stop the robot where it is: the velocity it had, and what followed from it, gone."""
         if self.free:
             self._base_qvel()[:] = 0.0
         self._follow.clear()
         self._slid = None
+        self.ticks, self.sampled = [], None
 
     def place_frame(self, frame_body: int, pos, rot) -> None:
         """Move the robot so that the frame of body `frame_body` (one of its components) is at pos/rot."""
@@ -327,7 +325,7 @@ class RobotHandle:
         total = float(self._masses.sum())
         if total <= 0:
             return self.sim.data.xipos[self.body_id].copy()
-        return self._masses @ self.sim.data.xipos[self._bodies] / total
+        return self._masses @ self.sim.data.xipos[self.bodies] / total
 
     def weight(self) -> float:
         """Magnitude of the gravity force the robot feels, N (parts compensated by gravcomp excluded)."""
@@ -395,18 +393,8 @@ def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[fl
     """(vx, vy, wz) of a body over an interval, from its poses at both ends (positions; rotations as
     row-major 9-lists): velocity in its own frame, turn rate about its own z axis, or with `heading` about
     the world's vertical (a ground robot's heading)."""
-    a0, a1, a2, a3, a4, a5, a6, a7, a8 = rot0
-    b0, b1, b2, b3, b4, b5, b6, b7, b8 = rot1
-    if heading:  # delta = rot1 rot0^T
-        d00, d11, d22 = b0 * a0 + b1 * a1 + b2 * a2, b3 * a3 + b4 * a4 + b5 * a5, b6 * a6 + b7 * a7 + b8 * a8
-        d01, d10 = b0 * a3 + b1 * a4 + b2 * a5, b3 * a0 + b4 * a1 + b5 * a2
-        d02, d20 = b0 * a6 + b1 * a7 + b2 * a8, b6 * a0 + b7 * a1 + b8 * a2
-        d12, d21 = b3 * a6 + b4 * a7 + b5 * a8, b6 * a3 + b7 * a4 + b8 * a5
-    else:  # delta = rot0^T rot1
-        d00, d11, d22 = a0 * b0 + a3 * b3 + a6 * b6, a1 * b1 + a4 * b4 + a7 * b7, a2 * b2 + a5 * b5 + a8 * b8
-        d01, d10 = a0 * b1 + a3 * b4 + a6 * b7, a1 * b0 + a4 * b3 + a7 * b6
-        d02, d20 = a0 * b2 + a3 * b5 + a6 * b8, a2 * b0 + a5 * b3 + a8 * b6
-        d12, d21 = a1 * b2 + a4 * b5 + a7 * b8, a2 * b1 + a5 * b4 + a8 * b7
+    delta = times_transpose(rot1, rot0) if heading else transpose_times(rot0, rot1)
+    d00, d01, d02, d10, d11, d12, d20, d21, d22 = delta
     vx, vy, vz = (d21 - d12) / 2, (d02 - d20) / 2, (d10 - d01) / 2
     sin = math.sqrt(vx * vx + vy * vy + vz * vz)
     angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)

@@ -301,31 +301,28 @@ class Simulation:
                 out.append(SceneObject(entry.fqn, body, "component", dict(entry.tags)))
         return out
 
-    def _robots_of_geoms(self) -> list[int] | None:
-        """The index in self.robots of the robot each geom is part of (-1: none); None if robots nest (each
-        then looks for its own contacts)."""
+    def _robots_of_geoms(self) -> list[int]:
+        """The index in self.robots of the robot each geom is part of (-1: none). Robots are children of the
+        world body, never of one another: a geom is part of one robot at most."""
         owner = np.full(self.model.ngeom, -1, dtype=int)
         for index, robot in enumerate(self.robots):
-            own = robot.handle._own_geoms
-            if np.any(owner[own] >= 0):
-                return None
-            owner[own] = index
+            owner[np.isin(self.model.geom_bodyid, robot.handle.bodies)] = index
             robot.handle.index = index
         return owner.tolist()
 
     # ---------------------------------------------------------------- queries used by components
-    def touching(self) -> set[int] | None:
+    def touching(self) -> set[int]:
         """The robots (their index in self.robots) that touch something not part of them in the contacts
-        MuJoCo found last: found once for all robots until the contacts change. None when robots nest."""
-        if self._touching is None and self._geom_robot is not None:
+        MuJoCo found last: found once for all robots until the contacts change."""
+        if self._touching is None:
             touching = set()
-            n = self.data.ncon
-            if n:
+            if self.data.ncon:
                 owner = self._geom_robot
                 for first, second in self.data.contact.geom.tolist():  # ncon of them, a few a robot: no numpy
                     if owner[first] != owner[second]:
                         touching.add(owner[first])
                         touching.add(owner[second])
+                touching.discard(-1)  # a geom of no robot
             self._touching = touching
         return self._touching
 
