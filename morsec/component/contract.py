@@ -95,7 +95,8 @@ class Device(Component):
     # checked at build time, so mounting it on a robot without them is a clear scene error
     robot_requires: ClassVar[tuple[str, ...]] = ()
     # a device with moving parts (a pan-tilt unit, an arm) may describe them in a xacro file of its folder,
-    # placed in its own body (links `<fqn>/L`, joints `<fqn>/J`), with optional joint armature (kg m^2)
+    # placed in its own body (links `<fqn>/L`, joints `<fqn>/J`), with optional joint armature (kg m^2; the
+    # key "*" for every joint not named)
     xacro: ClassVar[str | None] = None
     joint_armature: ClassVar[dict[str, float]] = {}
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
