@@ -99,6 +99,10 @@ class Device(Component):
     # key "*" for every joint not named)
     xacro: ClassVar[str | None] = None
     joint_armature: ClassVar[dict[str, float]] = {}
+    # a class whose methods MORSE's builder class of this component had besides the common ones (Joystick's
+    # `index` argument, Sound's `open`): the builder's class for it inherits them. It calls only builder methods
+    # (`self.properties(...)`, `super().__init__(name)`), never imports the builder
+    builder_mixin: ClassVar[type | None] = None
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None

@@ -81,11 +81,13 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
                 continue
             namespace = {"_type": cid, "_classpath": f"{kind}/{cid}:{comp.__name__}", "__module__": __name__,
                          "__doc__": comp.doc() or comp.short_descr or None, "__qualname__": name}
+            # MORSE's builder class's own arguments and methods (Joystick(index=), Sound.open), from the component
+            mixin = getattr(comp, "builder_mixin", None)
             if kind == "robots":
                 namespace["__init__"] = _robot_init
-            elif kind in ("sensors", "actuators"):
+            elif kind in ("sensors", "actuators") and not (mixin and "__init__" in vars(mixin)):
                 namespace["__init__"] = _device_init(base)
-            classes[name] = type(name, (base,), namespace)
+            classes[name] = type(name, (mixin, base) if mixin else (base,), namespace)
     return classes
 
 
