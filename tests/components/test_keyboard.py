@@ -8,9 +8,8 @@ import threading
 import time
 
 import pytest
-from websockets.sync.client import connect
-
 from runtime_helpers import Morsec, free_port, pose_sensor, robot, scene, scene_file, wait_until
+from websockets.sync.client import connect
 
 # MuJoCo Studio's web viewer takes the browser's keyboard and mouse through NetImgui (1.13, protocol 18), its
 # /ui socket bridged to the viewer's headless ImGui: the browser sends CmdVersion (120 bytes), reads the

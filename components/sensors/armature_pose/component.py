@@ -12,8 +12,9 @@ from morsec.kits.servos import is_bone
 class ArmaturePose(Sensor):
     """Streams the joint state of its armature (an `armature`, `kuka_lwr` ...): {joint name: value}, rad for
     revolute joints and m for prismatic ones, root to tip after `timestamp`. A bone that turns about several
-    axes (the human's) is one entry, its joint about its first axis (MORSE's value of a bone). Append it to the armature (it
-    then rides on the arm's end); if it is not on one, it reads the first armature of its robot."""
+    axes (the human's) is one entry, its joint about its first axis (MORSE's value of a bone). Append it to
+    the armature (it then rides on the arm's end); if it is not on one, it reads the first armature of its
+    robot."""
 
     short_descr = "Joint state of an armature (arm)"
     builder_name = "ArmaturePose"
