@@ -69,6 +69,11 @@ MORSE_BUILDER_MODULES = ("abstractcomponent", "actuators", "blenderobjects", "bp
                          "environment", "morsebuilder", "robots", "sensors")
 
 
+# other names MORSE's builder gave classes: {alias: the class's name}
+MORSE_ALIASES = {"VelodyneZB": "Velodyne",  # MORSE 1.1's name, kept by MORSE's sensors.py
+                 "LaserSensorWithArc": "LaserScanner"}  # the base of MORSE's laser scanner classes
+
+
 @lru_cache(maxsize=16)
 def catalogue_classes(cat: Catalogue) -> dict[str, type]:
     """One builder class per catalogue robot, sensor, actuator and prop, named by its builder_name."""
@@ -88,6 +93,9 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
             elif kind in ("sensors", "actuators") and not (mixin and "__init__" in vars(mixin)):
                 namespace["__init__"] = _device_init(base)
             classes[name] = type(name, (mixin, base) if mixin else (base,), namespace)
+    for alias, name in MORSE_ALIASES.items():
+        if name in classes and alias not in classes:
+            classes[alias] = classes[name]
     return classes
 
 
