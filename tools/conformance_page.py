@@ -2,7 +2,7 @@
 ../shared/morse-conformance) run against the installed morsec, with the pass rate and, for each file that
 still fails, its first failure.
 
-    python tools/conformance_page.py                        # base robots failures (about 30 minutes)
+    python tools/conformance_page.py                        # base robots failures human (about 30 minutes)
     python tools/conformance_page.py base/pose_testing.py   # some files (the page then says which)
     python tools/conformance_page.py --from-output run.txt  # a run.py output already made
     python tools/conformance_page.py --check                # CI: every file the page lists as passing
@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 SUITE = Path(os.environ.get("MORSE_CONFORMANCE", ROOT.parent / "shared" / "morse-conformance"))
 PAGE = ROOT / "docs" / "morse-conformance.md"
-FOLDERS = ["base", "robots", "failures"]
+FOLDERS = ["base", "robots", "failures", "human"]
 LINE = re.compile(r"^(\S+\.py)\s+(\d+)\s+(\d+)\s*(.*)$")
 LOGS = re.compile(r"^logs: (.+)$")
 # the line that says why: an assertion's message or an exception, not unittest's "FAIL: test_x" header

@@ -388,7 +388,8 @@ def device_links(cls, fqn: str) -> Link | None:
     """The link tree of a sensor or actuator whose class names a xacro file of its folder (`xacro =
     "arm.urdf.xacro"`: an arm), rendered inside the component's body: URDF link L becomes body `<fqn>/L`,
     joint J `<fqn>/J` (the robots' rule with the component's name). Its geoms never collide; per-joint
-    MuJoCo armature from the class's `joint_armature` ({joint: kg m^2}). None for a component without one."""
+    MuJoCo armature from the class's `joint_armature` ({joint: kg m^2}; "*": the joints it does not name).
+    None for a component without one."""
     name = getattr(cls, "xacro", None)
     if not name:
         return None
@@ -407,8 +408,9 @@ def device_links(cls, fqn: str) -> Link | None:
             g.visible = g.collision and not has_visual
         if link.joint:
             link.joint["mjname"] = part(fqn, link.joint["name"])
-            if link.joint["name"] in armature:
-                link.joint["armature"] = float(armature[link.joint["name"]])
+            value = armature.get(link.joint["name"], armature.get("*"))  # "*": every other joint's
+            if value is not None:
+                link.joint["armature"] = float(value)
     return tree
 
 

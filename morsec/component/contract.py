@@ -95,9 +95,14 @@ class Device(Component):
     # checked at build time, so mounting it on a robot without them is a clear scene error
     robot_requires: ClassVar[tuple[str, ...]] = ()
     # a device with moving parts (a pan-tilt unit, an arm) may describe them in a xacro file of its folder,
-    # placed in its own body (links `<fqn>/L`, joints `<fqn>/J`), with optional joint armature (kg m^2)
+    # placed in its own body (links `<fqn>/L`, joints `<fqn>/J`), with optional joint armature (kg m^2; the
+    # key "*" for every joint not named)
     xacro: ClassVar[str | None] = None
     joint_armature: ClassVar[dict[str, float]] = {}
+    # a class whose methods MORSE's builder class of this component had besides the common ones (Joystick's
+    # `index` argument, Sound's `open`): the builder's class for it inherits them. It calls only builder methods
+    # (`self.properties(...)`, `super().__init__(name)`), never imports the builder
+    builder_mixin: ClassVar[type | None] = None
     # where child components attach: a body of this component's model, relative to it ("tilt" -> the
     # `<fqn>/tilt` body), e.g. a camera on a pan-tilt unit follows the tilt; None: the component's body
     mount_body: ClassVar[str | None] = None

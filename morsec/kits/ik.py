@@ -144,3 +144,69 @@ def slerp(r0: np.ndarray, r1: np.ndarray, s: float) -> np.ndarray:
         theta = math.acos(dot)
         q = (math.sin((1 - s) * theta) * q0 + math.sin(s * theta) * q1) / math.sin(theta)
     return quat_to_matrix(q / np.linalg.norm(q))
+
+
+class WholeBodyIK:
+    """Inverse kinematics of several ends of one tree of joints at once (a human's head, wrists and feet),
+    each held at a position and an orientation: Blender's IK tree, as MORSE's human armature solved it.
+
+        ik = WholeBodyIK(sim.model, servos, stiffness, rot_weight=3.0)
+        q, errors = ik.solve(sim.data, [(body, pos, rot), ...])
+
+    Each solve starts from the rest pose (joints at zero), as Blender's solver started each frame from the
+    bones' own rotations, so a pose depends on where the targets are, not on the way they got there.
+    Levenberg-Marquardt on the stacked Jacobians of the bodies; `stiffness` (one per joint, servos' order)
+    weighs each joint's share of a movement: the step minimises |e - J dq|^2 + lambda^2 sum(stiffness dq^2)
+    (Blender's IK stiffness). Returns joint values and, per target, (distance m, angle rad) left."""
+
+    def __init__(self, model, servos, stiffness, rot_weight: float = 1.0):
+        self.model = model
+        self.servos = servos
+        self.stiffness = np.asarray(stiffness, dtype=float)
+        self.rot_weight = rot_weight
+        self.scratch = mujoco.MjData(model)
+
+    def _residual(self, data, goals, q) -> tuple[np.ndarray, list[tuple[float, float]]]:
+        m, d = self.model, self.scratch
+        d.qpos[self.servos.qpos] = q
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_comPos(m, d)
+        parts, errors = [], []
+        for body, pos, rot in goals:
+            ep = np.asarray(pos, dtype=float) - d.xpos[body]
+            er = rotation_error(rot, d.xmat[body].reshape(3, 3))
+            parts += [ep, self.rot_weight * er]
+            errors.append((float(np.linalg.norm(ep)), float(np.linalg.norm(er))))
+        return np.concatenate(parts), errors
+
+    def solve(self, data, goals, start=None, iterations: int = 150) -> tuple[np.ndarray, list[tuple[float, float]]]:
+        m, servos = self.model, self.servos
+        self.scratch.qpos[:] = data.qpos
+        q = servos.clamp(np.zeros(len(servos.names)) if start is None else np.asarray(start, dtype=float))
+        err, errors = self._residual(data, goals, q)
+        cols = servos.dof
+        jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+        damping = IK_DAMPING
+        for _ in range(iterations):
+            rows = []
+            for body, _, _ in goals:
+                mujoco.mj_jacBody(m, self.scratch, jacp, jacr, body)
+                rows += [jacp[:, cols], self.rot_weight * jacr[:, cols]]
+            jac = np.vstack(rows)
+            dq = np.linalg.solve(jac.T @ jac + damping ** 2 * np.diag(self.stiffness), jac.T @ err)
+            biggest = float(np.max(np.abs(dq)))
+            if biggest > IK_MAX_STEP:
+                dq *= IK_MAX_STEP / biggest
+            trial = servos.clamp(q + dq)
+            new, new_errors = self._residual(data, goals, trial)
+            if new @ new < err @ err:
+                q, err, errors = trial, new, new_errors
+                damping = max(IK_DAMPING, damping / 2)
+                if biggest < 1e-7:
+                    break
+            else:
+                damping *= 4
+                if damping > IK_MAX_DAMPING:
+                    break
+                self._residual(data, goals, q)
+        return q, errors

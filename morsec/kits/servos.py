@@ -11,6 +11,15 @@ from morsec.constants import MAX_POSITION, MAX_SPEED
 from morsec.kits import mjcf_names
 from morsec.kits.bounds import bounded
 
+# a bone turning about several axes (a human's): joint `<bone>` about its first axis, `<bone>:<axis>` about the
+# others; the bone (MORSE's channel) reads as its first joint
+AXIS_SEPARATOR = ":"
+
+
+def is_bone(joint: str) -> bool:
+    """Whether a joint of an armature is a bone's own (MORSE's channel), not one of its further axes."""
+    return AXIS_SEPARATOR not in joint
+
 
 class JointServos:
     """The hinge and slide joints of a component's own model (a pan-tilt unit, an arm: joints named

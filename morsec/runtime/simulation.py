@@ -23,6 +23,7 @@ from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
 from morsec.runtime.clock import Clock, Periodic, SleepHold
+from morsec.runtime.keys import KeyState
 from morsec.runtime.requests import RequestManager
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
@@ -162,6 +163,7 @@ class Simulation:
         self._free_joints: dict[int, tuple[int, int] | None] = {}  # body -> free_joint(body), looked up once
         self.requests = RequestManager()
         self.requests.on_leave.append(self.client_left)
+        self.keys = KeyState()  # the keys held in the viewer, if one is opened (MORSE's Keyboard reads them)
         self.poller = Poller()
         mujoco.mj_forward(self.model, self.data)
 
@@ -209,7 +211,7 @@ class Simulation:
             from morsec.runtime.view import open_view
             try:
                 self.view = open_view(self.options.view, self.model, self.data, self.options.bind,
-                                      self.options.view_port, env)
+                                      self.options.view_port, env, self.keys)
             except BaseException:
                 self.close()
                 raise

@@ -32,7 +32,15 @@ def add_robot_defaults(data: Any, cat: Catalogue) -> None:
         if not isinstance(components, list):
             continue
         named = {c.get("name") or c.get("type") for c in components if isinstance(c, dict)}
-        components.extend(copy.deepcopy(c) for c in defaults if c["name"] not in named)
+        components.extend(_scene_entry(copy.deepcopy(c)) for c in defaults if c["name"] not in named)
+
+
+def _scene_entry(spec: dict) -> dict:
+    """A default component as a scene entry: without `attribute` (the builder's name for it on the robot)."""
+    spec.pop("attribute", None)
+    for child in spec.get("components", ()):
+        _scene_entry(child)
+    return spec
 
 
 def add_environment_objects(data: Any, cat: Catalogue) -> Any:

@@ -478,5 +478,5 @@ def test_wheel_actuator_on_a_robot_without_wheels_is_a_scene_error(tmp_path):
         build_scene(source, tmp_path / "b")
     assert str(err.value) == (f"{source}:5:25: robots[0].components[0].type: 'motion_vw_diff' needs a robot declaring "
                               "wheel_radius, wheel_track, left_wheel_joints, right_wheel_joints; robot type 'atrv' "
-                              "does not (these do: pioneer3dx, segwayrmp400)")
+                              "does not (these do: patrolbot, pioneer3dx, segwayrmp400)")
     assert not (tmp_path / "b").exists()

@@ -6,12 +6,15 @@ import mujoco
 import numpy as np
 
 from morsec.component import DataField, Sensor, service
+from morsec.kits.servos import is_bone
 
 
 class ArmaturePose(Sensor):
     """Streams the joint state of its armature (an `armature`, `kuka_lwr` ...): {joint name: value}, rad for
-    revolute joints and m for prismatic ones, root to tip after `timestamp`. Append it to the armature (it
-    then rides on the arm's end); if it is not on one, it reads the first armature of its robot."""
+    revolute joints and m for prismatic ones, root to tip after `timestamp`. A bone that turns about several
+    axes (the human's) is one entry, its joint about its first axis (MORSE's value of a bone). Append it to
+    the armature (it then rides on the arm's end); if it is not on one, it reads the first armature of its
+    robot."""
 
     short_descr = "Joint state of an armature (arm)"
     builder_name = "ArmaturePose"
@@ -33,8 +36,9 @@ class ArmaturePose(Sensor):
         hinge_slide = (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))
         for fqn in candidates:
             prefix = fqn + "/"
-            ids = [j for j in range(m.njnt) if int(m.jnt_type[j]) in hinge_slide
-                   and (mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) or "").startswith(prefix)]
+            named = ((j, mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) or "") for j in range(m.njnt))
+            ids = [j for j, name in named if int(m.jnt_type[j]) in hinge_slide and name.startswith(prefix)
+                   and is_bone(name[len(prefix):])]
             if ids:
                 self.armature = fqn
                 self.joints = np.array(ids, dtype=int)

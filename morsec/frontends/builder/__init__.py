@@ -69,6 +69,11 @@ MORSE_BUILDER_MODULES = ("abstractcomponent", "actuators", "blenderobjects", "bp
                          "environment", "morsebuilder", "robots", "sensors")
 
 
+# other names MORSE's builder gave classes: {alias: the class's name}
+MORSE_ALIASES = {"VelodyneZB": "Velodyne",  # MORSE 1.1's name, kept by MORSE's sensors.py
+                 "LaserSensorWithArc": "LaserScanner"}  # the base of MORSE's laser scanner classes
+
+
 @lru_cache(maxsize=16)
 def catalogue_classes(cat: Catalogue) -> dict[str, type]:
     """One builder class per catalogue robot, sensor, actuator and prop, named by its builder_name."""
@@ -81,11 +86,16 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
                 continue
             namespace = {"_type": cid, "_classpath": f"{kind}/{cid}:{comp.__name__}", "__module__": __name__,
                          "__doc__": comp.doc() or comp.short_descr or None, "__qualname__": name}
+            # MORSE's builder class's own arguments and methods (Joystick(index=), Sound.open), from the component
+            mixin = getattr(comp, "builder_mixin", None)
             if kind == "robots":
                 namespace["__init__"] = _robot_init
-            elif kind in ("sensors", "actuators"):
+            elif kind in ("sensors", "actuators") and not (mixin and "__init__" in vars(mixin)):
                 namespace["__init__"] = _device_init(base)
-            classes[name] = type(name, (base,), namespace)
+            classes[name] = type(name, (mixin, base) if mixin else (base,), namespace)
+    for alias, name in MORSE_ALIASES.items():
+        if name in classes and alias not in classes:
+            classes[alias] = classes[name]
     return classes
 
 

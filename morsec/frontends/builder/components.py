@@ -701,7 +701,8 @@ class Robot(AbstractComponent):
 
     def _add_default_components(self) -> None:
         """The robot type's `default_components` (BasePR2's torso, head ...) as children, each an attribute of
-        the robot by its name (nested ones `<parent>_<name>`: MORSE's `pr2.torso_pose`)."""
+        the robot by its name (nested ones `<parent>_<name>`: MORSE's `pr2.torso_pose`, unless the entry
+        names its `attribute`: the Human's `human.joint_states`)."""
         cls = self._catalogue_class(self._type_name)
         for spec in getattr(cls, "default_components", ()) if cls else ():
             self._default_child(self, spec, "")
@@ -720,7 +721,7 @@ class Robot(AbstractComponent):
         for middleware in spec.get("services", ()):
             child.add_service(middleware)
         parent.append(child)
-        attribute = f"{prefix}{spec['name']}"
+        attribute = spec.get("attribute") or f"{prefix}{spec['name']}"
         if not hasattr(type(self), attribute):
             setattr(self, attribute, child)
         for sub in spec.get("components", ()):
@@ -736,11 +737,20 @@ class Robot(AbstractComponent):
         table = self._builder_interface()
         if not table:
             return super().add_interface(interface, **kwargs)
-        children = {c.basename: c for c in self._children}
         for key, method in (("streams", "add_stream"), ("services", "add_service")):
             for name in table.get(key, ()):
-                if name in children:
-                    getattr(children[name], method)(interface, **(kwargs if key == "streams" else {}))
+                child = self._descendant(name)
+                if child is not None:
+                    getattr(child, method)(interface, **(kwargs if key == "streams" else {}))
+
+    def _descendant(self, path: str) -> AbstractComponent | None:
+        """A component of this robot by its name relative to it (`skeleton.joint_states`), or None."""
+        node: AbstractComponent = self
+        for part in path.split("."):
+            node = next((c for c in node._children if c.basename == part), None)
+            if node is None:
+                return None
+        return node
 
     def add_stream(self, datastream, method=None, path=None, classpath=None, direction=None, **kwargs):
         """On a robot type with its own interface (BasePR2): as add_interface (MORSE's did nothing; old
