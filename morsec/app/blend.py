@@ -17,7 +17,7 @@ KINDS = {"environment": "environments", "props": "props"}
 def import_blend_file(source: Path, out: Path | None = None, kind: str = "environment", name: str | None = None,
                       force: bool = False) -> list[str]:
     """Import `source` into the components folder `out` (default: the project's); the lines to print."""
-    from morsec.kits.blend.folder import ImportFailure, import_blend
+    from morsec.kits.blend.folder import ImportFailure, clean_id, import_blend
     from morsec.kits.blend.sdna import BlendFormatError
     folder_kind = _kind(kind)
     source = Path(source)
@@ -25,6 +25,7 @@ def import_blend_file(source: Path, out: Path | None = None, kind: str = "enviro
         raise MorsecError(f"{source}: no such file")
     root = Path(out) if out is not None else _project_components()
     try:
+        _check_free(root, folder_kind, clean_id(name or source.stem))
         done = import_blend(source, root, folder_kind, name, force)
     except BlendFormatError as err:
         raise MorsecError(f"{source}: cannot import it: {err}") from None
@@ -84,6 +85,25 @@ def list_blend(source: Path, kind: str = "environment") -> list[str]:
             text += f", properties {obj.properties}"
         lines.append(text)
     return lines
+
+
+def _check_free(root: Path, kind: str, ident: str) -> None:
+    """The ids the import writes must not be another component's: the catalogue would hold them twice."""
+    from morsec.component.catalogue import load_catalogue
+    from morsec.kits.blend.folder import ImportFailure
+    cat = load_catalogue(root)
+    own = {kind: root.resolve() / kind / ident, "props": root.resolve() / "props" / ident}
+
+    def ours(cls) -> bool:
+        folder = Path(cls.folder).resolve()
+        return folder == own[kind] or own["props"] in folder.parents
+
+    taken = [cls for cls in cat.by_kind.get(kind, {}).values() if cls.id == ident and not ours(cls)]
+    taken += [cls for cls in cat.by_kind.get("props", {}).values() if cls.id.startswith(ident + "/") and not ours(cls)]
+    if taken:
+        what = f"{taken[0].kind} {taken[0].id!r}"
+        raise ImportFailure(f"{what} exists already ({taken[0].folder}): give this import another id with "
+                            f"--name, e.g. --name my_{ident.replace('/', '_')}")
 
 
 def _kind(kind: str) -> str:

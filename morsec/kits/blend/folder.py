@@ -35,6 +35,9 @@ IMPORTER = 1  # raised when what an import writes changes: $MORSE_ROOT's cached 
 RECORD = "blend-import.json"  # what the import read and made, beside component.py
 DEFAULT_COLOR = (0.8, 0.8, 0.8, 1.0)  # Blender's colour of a face without material
 DEFAULT_FRICTION = 0.5  # Blender 2.6x's material friction
+# Blender's friction runs to 100; MuJoCo's pyramidal contacts lose their hold above a few (a ball of friction 8
+# sinks through the floor), so a material's friction is carried up to this
+MAX_FRICTION = 2.0
 MAX_LIGHTS = 8
 CONE_SIDES = 16
 NAME_CHARS = re.compile(r"[^A-Za-z0-9_.\-]")
@@ -106,7 +109,7 @@ def import_blend(source: Path, root: Path, kind: str = "environments", name: str
         pid = f"{ident}/{folder}"
         frame = _frame(top.matrix)
         shape = _shape(members, frame, top)
-        notes += [f"{top.name}: {n}" for n in shape.notes]
+        notes += shape.notes
         _write_prop(files, f"{props_dir}/{folder}", pid, top, shape, scene)
         props.append(pid)
         if kind == "environments":
@@ -199,7 +202,7 @@ def _shape(members: list[BlendObject], frame: np.ndarray, top: BlendObject | Non
         if obj.mesh is not None and len(obj.mesh.triangles) and obj.collides:
             _colliders(shape, obj, relative)
     if top is not None and top.moves and not shape.colliders:
-        shape.notes.append("moves but nothing of it collides: it falls through everything")
+        shape.notes.append(f"{top.name}: moves but nothing of it collides: it falls through everything")
     return shape
 
 
@@ -240,6 +243,9 @@ def _colliders(shape: Shape, obj: BlendObject, relative: np.ndarray) -> None:
     material = _first_material(obj)
     friction = getattr(material, "friction", None)
     friction = DEFAULT_FRICTION if friction is None else friction
+    if friction > MAX_FRICTION:
+        shape.notes.append(f"{obj.name}: material friction {friction:g} carried as {MAX_FRICTION:g}")
+        friction = MAX_FRICTION
     local = mesh.vertices
     low, high = local.min(axis=0), local.max(axis=0)
     centre = relative[:3, :3] @ ((low + high) / 2) + relative[:3, 3]
