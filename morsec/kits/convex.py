@@ -153,6 +153,7 @@ def _solid(points: np.ndarray, normals: np.ndarray, area2: np.ndarray, thickness
 def _principal(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Extents along the principal axes (largest first) and the axes (rows; a third completes two)."""
     centred = points - points.mean(axis=0)
-    _, _, axes = np.linalg.svd(centred, full_matrices=True)
+    _, vectors = np.linalg.eigh(centred.T @ centred)  # ascending: the largest spread last
+    axes = vectors[:, ::-1].T
     projected = centred @ axes.T
     return projected.max(axis=0) - projected.min(axis=0), axes

@@ -155,7 +155,7 @@ class _Reader:
         return BlendScene(file.path, version, scene["id"]["name"][2:], objects)
 
     def _check_local(self, struct: Struct, what: str) -> None:
-        ident = struct["id"]
+        ident = struct if struct.name == "ID" else struct["id"]  # data linked from a library is an ID block
         if ident["lib"]:
             library = self.file.deref(ident["lib"], "Library")
             where = library["name"] if library is not None else "another file"
