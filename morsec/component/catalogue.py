@@ -84,7 +84,7 @@ class Catalogue:
         source = self.morse.source(kind, name)
         if source is None:
             return None
-        for found_kind, cid, cls in self.morse.load(self, *source):
+        for found_kind, cid, cls in self.morse.load(load_component, *source):
             if self.by_kind.setdefault(found_kind, {}).get(cid) is not cls:
                 self.by_kind[found_kind][cid] = cls
                 self._devices = None

@@ -12,6 +12,7 @@ import hashlib
 import json
 import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from morsec.errors import MorsecError
@@ -53,12 +54,12 @@ class MorseData:
                 return file_kind, head
         return None
 
-    def load(self, cat, file_kind: str, file_id: str) -> list[tuple[str, str, type]]:
-        """The components made of one MORSE file, imported into the cache if it is not there or is stale:
-        [(kind, id, class)]."""
+    def load(self, load_component: Callable[[Path, str, str], type], file_kind: str,
+             file_id: str) -> list[tuple[str, str, type]]:
+        """The components made of one MORSE file, imported into the cache if it is not there or is stale, and
+        loaded by the catalogue's `load_component`: [(kind, id, class)]."""
         if (file_kind, file_id) in self.loaded:
             return self.loaded[file_kind, file_id]
-        from morsec.component.catalogue import load_component
         from morsec.kits.blend.folder import IMPORTER, import_blend
         from morsec.kits.blend.sdna import BlendFormatError
         source = self.files[file_kind][file_id]
