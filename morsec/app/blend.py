@@ -83,6 +83,8 @@ def list_blend(source: Path, kind: str = "environment") -> list[str]:
             text += f", friction {', '.join(f'{f:.4g}' for f in frictions)}"
         if obj.properties:
             text += f", properties {obj.properties}"
+        if obj.custom:
+            text += f", custom properties {obj.custom}"
         lines.append(text)
     return lines
 

@@ -360,8 +360,10 @@ def _write_prop(files: dict[str, bytes], folder: str, pid: str, top: BlendObject
     defaults: dict = {"size": _vec(size), "color": _vec(color), "dynamic": top.moves}
     if top.moves:
         defaults["mass"] = float(f"{top.mass:.6g}")
-    if top.properties:
-        defaults["properties"] = dict(top.properties)
+    # Blender's custom (ID) properties of plain values, then the game properties MORSE's sensors read
+    bag = {k: v for k, v in top.custom.items() if isinstance(v, bool | int | float | str)} | top.properties
+    if bag:
+        defaults["properties"] = bag
     body = [f"{{#- {_comment(top.name)} of {_comment(scene.path.name)} (Blender {scene.version}) with its children, "
             "in its frame, imported by morsec import-blend; `size` scales it, `color` paints its first material -#}",
             f"{{% set own = {json.dumps(size)} %}}",
