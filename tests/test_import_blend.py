@@ -288,6 +288,33 @@ def test_props_fall_onto_an_imported_floor_and_rest(project, tmp_path):
 
 
 @needs_assets
+@pytest.mark.parametrize("relative", PROPS)
+def test_every_prop_of_each_props_file_builds_and_runs(project, tmp_path, relative):
+    """Each prop of the file 1 m over the imported floor: what moves falls and stays above the floor, what is
+    static stays where it is put."""
+    from morsec.component.catalogue import load_catalogue
+    stem = Path(relative).stem
+    cat = load_catalogue(project)
+    props = [cls for cid, cls in sorted(cat.by_kind["props"].items()) if cid.startswith(stem + "/")]
+    assert props
+    objects, x, y, row = [], -19.0, 2.0, 0.0  # side by side, 1 m apart, on the 40 x 40 m floor
+    for i, cls in enumerate(props):
+        width, depth = (max(cls.defaults["size"][:2]) + 1.0,) * 2
+        if x + width > 19.0:
+            x, y, row = -19.0, y + row, 0.0
+        objects.append({"name": f"p{i}", "type": cls.id, "translate": [x + width / 2, y + depth / 2, 1.0]})
+        x, row = x + width, max(row, depth)
+    with run_robot(project, tmp_path, env_id("environments/empty.blend"), 0, objects=objects) as sim:
+        sim.run_for(2.0)
+        heights = {o["name"]: sim.body_pose(o["name"])[0][2] for o in objects}
+    for obj, cls in zip(objects, props):
+        if cls.defaults["dynamic"]:
+            assert -0.05 < heights[obj["name"]] < 0.99, cls.id  # fell, and rests on the floor
+        else:
+            assert heights[obj["name"]] == pytest.approx(1.0), cls.id
+
+
+@needs_assets
 def test_an_environment_keeps_its_objects_names_properties_and_physics(project, tmp_path):
     with run_robot(project, tmp_path, env_id("environments/indoors-1/indoor-1.blend"), 0) as sim:
         tagged = sorted(o.name for o in sim.sim.objects_with("Object"))
