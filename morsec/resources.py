@@ -16,6 +16,7 @@ _PACKAGE = Path(__file__).resolve().parent
 PROJECT_FILE = "morsec.toml"
 ENV_VAR = "MORSEC_COMPONENTS"
 ENTRY_POINT_GROUP = "morsec.components"
+MORSE_ROOT_VAR = "MORSE_ROOT"  # a MORSE installation, whose share/morse/data holds MORSE's .blend files
 
 
 def data_dir(name: str) -> Path:
@@ -92,3 +93,13 @@ def search_path(start: Path | None = None) -> tuple[Path, ...]:
         if p not in unique and p.is_dir():
             unique.append(p)
     return tuple(unique)
+
+
+def morse_data() -> Path | None:
+    """$MORSE_ROOT/share/morse/data when $MORSE_ROOT names a MORSE installation (its environments and props
+    are then MORSE's own .blend files: morsec.component.morse_data), else None."""
+    root = os.environ.get(MORSE_ROOT_VAR)
+    if not root:
+        return None
+    data = Path(root) / "share" / "morse" / "data"
+    return data.resolve() if data.is_dir() else None

@@ -518,7 +518,8 @@ def test_passive_object_lists_searched_folders_and_finds_blend_assets(tmp_path, 
         from morse.builder import *
         chair = PassiveObject('props/chairs', 'Chair')
     """, "found.py")
-    with pytest.raises(SceneError, match=r"found .*chairs.blend, but morsec cannot load Blender assets"):
+    with pytest.raises(SceneError, match=r"found .*chairs.blend: import it first, `morsec import-blend .*chairs.blend "
+                                         r"--kind props`, then PassiveObject\('props/chairs', 'Chair'\)"):
         load(found)
     catalogue_prop = write(tmp_path, """
         from morse.builder import *

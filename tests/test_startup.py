@@ -81,7 +81,7 @@ def test_a_command_line_assembles_its_command_only():
     only_run = make_app(command_of(["run", "build/x", "--duration", "1"]))
     assert [c.callback.__name__ for c in only_run.registered_commands] == ["run", "version"]
     everything = make_app(command_of(["--help"]))
-    assert [c.callback.__name__ for c in everything.registered_commands] == [*COMMANDS, "version"]
+    assert [c.name or c.callback.__name__ for c in everything.registered_commands] == [*COMMANDS, "version"]
     assert command_of(["bogus"]) is None and command_of([]) is None
 
 

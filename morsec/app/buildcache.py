@@ -3,11 +3,11 @@
 After a build of a YAML or TOML scene, a stamp in the user's cache folder ($XDG_CACHE_HOME/morsec/builds,
 else ~/.cache/morsec/builds; one file per build folder, named by a hash of its absolute path; the build folder
 itself holds only what its manifest lists) records a SHA-256 of everything the build was made from (the
-scene file and its path, the catalogue's folders, morsec's own code and templates, the Python and the
-installed distributions, MuJoCo's among them) and of the manifest written. A later build of the same scene
-into the same folder that finds the same inputs, and in the folder exactly the files its manifest lists,
-unchanged, stops there, without importing the compiler. A builder script (.py) runs every time: it is code, and may read
-anything. Without a writable cache folder every build compiles."""
+scene file and its path, the catalogue's folders, $MORSE_ROOT's .blend files, morsec's own code and
+templates, the Python and the installed distributions, MuJoCo's among them) and of the manifest written. A later
+build of the same scene into the same folder that finds the same inputs, and in the folder exactly the files
+its manifest lists, unchanged, stops there, without importing the compiler. A builder script (.py) runs every
+time: it is code, and may read anything. Without a writable cache folder every build compiles."""
 
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ import os
 import sys
 from pathlib import Path
 
-from morsec.resources import data_dir, search_path
+from morsec.resources import data_dir, morse_data, search_path
 
 CACHE_DIR = "morsec/builds"  # under $XDG_CACHE_HOME or ~/.cache
 MANIFEST = "manifest.json"  # morsec.scene.manifest.MANIFEST, which this module does not import (pydantic, MuJoCo)
@@ -45,6 +45,12 @@ def inputs_key(source: Path) -> str | None:
         add(sys.version)
         for name in _distributions():
             add(name)
+        morse = morse_data()  # $MORSE_ROOT's files answer names before the catalogue: they are inputs too
+        add(str(morse))
+        if morse is not None:
+            for path in sorted(morse.rglob("*.blend")):
+                stat = path.stat()
+                add(f"{path} {stat.st_size} {stat.st_mtime_ns}")
         for root in (_PACKAGE, data_dir("templates"), *search_path(source.parent)):
             add(str(root))
             for path in _files(root):

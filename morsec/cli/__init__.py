@@ -21,7 +21,7 @@ from morsec import __version__
 COMMANDS = {
     "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "docs": "catalogue",
     "render": "running", "components": "catalogue", "convert": "scenes", "create": "scaffold", "add": "scaffold",
-    "rm": "scaffold",
+    "rm": "scaffold", "import-blend": "scaffold",
 }
 
 
@@ -54,7 +54,8 @@ def make_app(only: str | None = None) -> typer.Typer:
                       help="morsec: MORSE scenes compiled to MuJoCo.")
     for name, module in COMMANDS.items():
         if only is None or only == name:
-            app.command()(getattr(importlib.import_module(f"morsec.cli.{module}"), name))
+            function = getattr(importlib.import_module(f"morsec.cli.{module}"), name.replace("-", "_"))
+            app.command(name=name)(function)
     app.callback()(_options)
     app.command()(version)
     return app

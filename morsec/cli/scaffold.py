@@ -1,4 +1,4 @@
-"""Commands that write a user's project: create, add, rm."""
+"""Commands that write a user's project: create, add, rm, import-blend."""
 
 from __future__ import annotations
 
@@ -61,3 +61,24 @@ def rm(
     except MorsecError as err:
         fail(err)
     typer.echo(f"removed {kind} {name} ({len(removed)} files and its folder)")
+
+
+def import_blend(
+    file: Annotated[Path, typer.Argument(help="the .blend file (Blender 2.5 to 3.4; MORSE's are 2.6x and 2.7x)")],
+    out: Annotated[Path | None, typer.Option("--out", "-o", help="the components folder to write into "
+                                             "(default: the project's)")] = None,
+    kind: Annotated[str, typer.Option(help="environment (a world and its objects) or props (one prop per "
+                                      "object)")] = "environment",
+    name: Annotated[str | None, typer.Option(help="its id (default: the file's name)")] = None,
+    force: Annotated[bool, typer.Option("--force", "-f", help="replace folders an earlier import wrote")] = False,
+    list_objects: Annotated[bool, typer.Option("--list", help="print the objects as the importer reads them "
+                                               "(physics, bounds, mass, properties); write nothing")] = False,
+) -> None:
+    """Import a Blender environment or props file: its meshes, transforms, names, parenting, colours, game
+    properties and physics as component folders that scenes name."""
+    from morsec.app.blend import import_blend_file, list_blend
+    try:
+        lines = list_blend(file, kind) if list_objects else import_blend_file(file, out, kind, name, force)
+    except MorsecError as err:
+        fail(err)
+    typer.echo("\n".join(lines))

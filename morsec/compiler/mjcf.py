@@ -117,7 +117,10 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     env_xml = render(env, _own_template(cat, environment, environment.template), **env_context)
     asset_xml = [_class_assets(environment, cat, env, assets, env_context)]
     for cls in _used_classes(scene, cat):
-        asset_xml.append(_class_assets(cls, cat, env, assets, {"asset_dir": asset_dir(cls), "id": cls.id}))
+        context: dict[str, Any] = {"asset_dir": asset_dir(cls), "id": cls.id}
+        if cls.kind == "prop":  # a prop scaled by its objects' sizes declares its meshes at each (mesh scale)
+            context["sizes"] = _prop_sizes(scene, cat, cls)
+        asset_xml.append(_class_assets(cls, cat, env, assets, context))
 
     robots = [render(env, "mjcf/robot.xml.j2", robot=_robot_body(r, cat, env, robot_trees[r.name]))
               for r in scene.robots]
@@ -187,6 +190,12 @@ def _used_classes(scene, cat: Catalogue) -> list[type[Component]]:
         cls = cat.get("props", obj.type)
         found.setdefault(f"prop/{cls.id}", cls)
     return [found[k] for k in sorted(found)]
+
+
+def _prop_sizes(scene, cat: Catalogue, cls: type[Component]) -> list[list[float]]:
+    """The distinct sizes the scene's objects of prop `cls` have, in a stable order."""
+    sizes = {tuple(o.size) for o in scene.objects if cat.get("props", o.type) is cls}
+    return [list(size) for size in sorted(sizes)]
 
 
 def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
@@ -482,7 +491,7 @@ def _move_bodies(root: ET.Element, mounts: dict[str, tuple[str, str | None]]) ->
 def _object(obj, cat: Catalogue, env) -> str:
     cls = cat.get("props", obj.type)
     color = list(obj.color) + [1.0] if len(obj.color) == 3 else list(obj.color)
-    fragment = render(env, _own_template(cat, cls, cls.template), name=obj.name, size=obj.size,
+    fragment = render(env, _own_template(cat, cls, cls.template), name=obj.name, id=cls.id, size=obj.size,
                       half=[s / 2 for s in obj.size], color=color, mass=obj.mass, dynamic=obj.dynamic,
                       properties=obj.properties)
     return render(env, "mjcf/object.xml.j2", obj={

@@ -31,6 +31,7 @@ from morsec.component.contract import (
     Robot,
     Sensor,
 )
+from morsec.component.morse_data import MorseData
 from morsec.errors import MorsecError, did_you_mean, one_of
 from morsec.modifiers.base import Modifier
 from morsec.modifiers.registry import MODIFIERS
@@ -39,6 +40,7 @@ from morsec.resources import (  # noqa: F401 (the search path's names, where the
     ENV_VAR,
     PROJECT_FILE,
     data_dir,
+    morse_data,
     project_component_dirs,
     project_root,
     search_path,
@@ -58,18 +60,36 @@ class Catalogue:
     by_kind: dict[str, dict[str, type[Component]]] = field(default_factory=dict)
     aliases: dict[str, dict[str, str]] = field(default_factory=dict)  # kind -> builder name -> id
     _devices: dict | None = field(default=None, repr=False)
+    morse: MorseData | None = field(default=None, repr=False)  # $MORSE_ROOT's environments and props
 
     def ids(self, kind: str) -> list[str]:
-        return sorted(self.by_kind.get(kind, {}))
+        return sorted(set(self.by_kind.get(kind, {})) | set(self.morse.ids(kind) if self.morse else ()))
 
     def names(self, kind: str) -> list[str]:
         """Ids and MORSE builder class names accepted as `type:`."""
-        return sorted(set(self.by_kind.get(kind, {})) | set(self.aliases.get(kind, {})))
+        return sorted(set(self.ids(kind)) | set(self.aliases.get(kind, {})))
 
     def resolve(self, kind: str, name: str) -> str | None:
+        if self.morse is not None:
+            found = self._from_morse(kind, name)
+            if found is not None:
+                return found
         if name in self.by_kind.get(kind, {}):
             return name
         return self.aliases.get(kind, {}).get(name)
+
+    def _from_morse(self, kind: str, name: str) -> str | None:
+        """A name MORSE's data answers ($MORSE_ROOT): its file imported and its components put first."""
+        assert self.morse is not None
+        source = self.morse.source(kind, name)
+        if source is None:
+            return None
+        for found_kind, cid, cls in self.morse.load(load_component, *source):
+            if self.by_kind.setdefault(found_kind, {}).get(cid) is not cls:
+                self.by_kind[found_kind][cid] = cls
+                self._devices = None
+        wanted = name.replace("\\", "/").removesuffix(".blend").removeprefix(f"{kind}/")
+        return wanted if wanted in self.by_kind.get(kind, {}) else None
 
     # a component of `kind` is a subclass of KINDS[kind] (load_component checks it): typed as such
     @overload
@@ -114,12 +134,15 @@ class Catalogue:
 
 
 def load_catalogue(start: Path | None = None) -> Catalogue:
-    return _load(search_path(start))
+    return _load(search_path(start), morse_data())
 
 
 @lru_cache(maxsize=16)
-def _load(roots: tuple[Path, ...]) -> Catalogue:
+def _load(roots: tuple[Path, ...], morse: Path | None = None) -> Catalogue:
     cat = Catalogue(roots)
+    if morse is not None:  # its imports are found by name (Catalogue.resolve), their templates under its root
+        cat.morse = MorseData(morse)
+        cat.roots = (*roots, cat.morse.root)
     for root in roots:
         for kind in KINDS:
             kind_dir = root / kind

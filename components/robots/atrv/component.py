@@ -11,8 +11,8 @@ class ATRV(Robot):
     xacro = "robot.urdf.xacro"
     spawn_height = 0.10
     # MORSE's own tests tell its mass and damping: 100 N speeds the ATRV up at 5 m/s^2 (20 kg) and, let go at
-    # 10 m/s, it slows down by 0.2 m/s^2 (damping 0.02); its atrv.blend (tools/blend_physics.py) has 20 kg,
-    # Damping 0.0254 and Rotation Damping 0.18
+    # 10 m/s, it slows down by 0.2 m/s^2 (damping 0.02); its atrv.blend (`morsec import-blend atrv.blend --list`)
+    # has 20 kg, Damping 0.0254 and Rotation Damping 0.18
     damping = (0.02, 0.1)
 
     class Properties(RobotProperties):

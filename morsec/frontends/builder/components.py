@@ -985,6 +985,14 @@ class PassiveObject(_Object):
         what = f"PassiveObject({filename!r}" + (f", {prefix!r})" if prefix else ")")
         if self._from_environment(str(filename), prefix, keep_pose, what):
             return
+        cat = self._session.catalogue
+        if prefix:  # the object of a props file morsec import-blend read (a project's, or $MORSE_ROOT's)
+            stem = str(filename).replace("\\", "/").removesuffix(".blend").removeprefix("props/")
+            found = cat.resolve("props", f"{stem}/{prefix}")
+            if found:
+                self._type_name = found
+                self._own_size = cat.get("props", found).defaults.get("size")
+                return
         for candidate in (prefix, filename):
             if candidate:
                 found = self._lookup(candidate)
@@ -994,12 +1002,12 @@ class PassiveObject(_Object):
                     return
         searched = asset_search_path(self._session.script)
         found_file = find_asset(str(filename), searched)
-        cat = self._session.catalogue
         props = ", ".join(cat.names("props"))
         if found_file:
-            raise self._session.error(f"{what}: found {found_file}, but morsec cannot load Blender assets (.blend) "
-                                      f"yet; use a catalogue prop ({props}) or a basic shape "
-                                      "(Cube(), Cylinder(), Sphere())")
+            stem = Path(found_file).stem
+            raise self._session.error(f"{what}: found {found_file}: import it first, `morsec import-blend "
+                                      f"{found_file} --kind props`, then PassiveObject('props/{stem}', "
+                                      f"'{prefix or '<object>'}') names its object")
         shown = ", ".join(str(p) for p in searched) or "(nothing)"
         wanted = str(prefix or self._blend_object)
         raise self._session.error(f"{what}: no catalogue prop by that name{did_you_mean(wanted, cat.names('props'))} "
