@@ -67,7 +67,9 @@ def run_sweep(path: Path, out: Path, report: Reporter, resume: bool = False, sch
         engine.close()
     runs = {task.run for task in tasks}
     rows = [row for row in table.rows if row["run"] in runs]
-    groups = summarize(rows, parameters)
+    from morsec.app.sweep.execute import cell
+    order = {p: list(dict.fromkeys(cell(t.values[p]) for t in tasks if p in t.values)) for p in parameters}
+    groups = summarize(rows, parameters, order)
     outcome = Outcome(out, rows, groups, len(todo), files=[out / PARQUET, out / CSV, write_summary(groups, out)])
     if plot:
         outcome.plot = plot_summary(groups, out, f"{sweep.path.name}: {len(rows)} runs")

@@ -73,7 +73,7 @@ class DaskEngine:
                                         retries=RETRIES, key=f"morsec-run-{task.run}-{os.urandom(4).hex()}")
             futures[future] = task
         try:
-            for future in dask_completed(list(futures)):
+            for future in dask_completed(list(futures), loop=self.client.loop):
                 task = futures[future]
                 try:
                     yield future.result()

@@ -25,7 +25,7 @@ def _seed_count(value: Any) -> Any:
     """`seeds: 10` is seeds 0 to 9."""
     if isinstance(value, int) and not isinstance(value, bool):
         if value < 1:
-            raise ValueError(f"a number of seeds must be 1 or more, got {value}")
+            raise ValueError("a number of seeds must be 1 or more")
         return list(range(value))
     return value
 

@@ -52,14 +52,15 @@ def metric_columns(rows: list[dict], parameters: list[str]) -> list[str]:
     return list(seen)
 
 
-def summarize(rows: list[dict], parameters: list[str]) -> list[Group]:
+def summarize(rows: list[dict], parameters: list[str], order: dict[str, list] | None = None) -> list[Group]:
+    """`order`: each parameter's values in the sweep file's order (the rows come in the order runs finished)."""
     metrics = metric_columns(rows, parameters)
     groups = []
     for parameter in parameters or [ALL]:
         by_value: dict[Any, list[dict]] = {}
         for row in rows:
             by_value.setdefault(row.get(parameter) if parameter != ALL else ALL, []).append(row)
-        for value in _ordered(list(by_value)):
+        for value in _ordered(list(by_value), (order or {}).get(parameter, [])):
             members = by_value[value]
             ok = [r for r in members if r.get("status") == OK]
             values = {m: [float(r[m]) for r in ok if _number(r.get(m)) or isinstance(r.get(m), bool)]
@@ -156,10 +157,9 @@ def _number(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _ordered(values: list[Any]) -> list[Any]:
-    if all(_number(v) for v in values):
-        return sorted(values)
-    return values
+def _ordered(values: list[Any], written: list[Any]) -> list[Any]:
+    rank = {v: i for i, v in enumerate(written) if isinstance(v, (str, int, float, bool))}
+    return sorted(values, key=lambda v: rank.get(v, len(rank)) if isinstance(v, (str, int, float, bool)) else len(rank))
 
 
 def _show(value: Any) -> str:
