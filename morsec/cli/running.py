@@ -45,8 +45,9 @@ def run(
     output_dir: Annotated[Path | None, typer.Option(
         "--output-dir", help="folder the text streams write their files into (default: the current folder)")] = None,
     wait_for_client: Annotated[bool, typer.Option(
-        "--wait-for-client", help="no frame runs before a client's first request or stream connection (fixed_step "
-        "runs started with their client, as `morsec sweep` does)")] = False,
+        "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
+        "simulation ends when the service clients that made requests have all left (runs started with their "
+        "client, as `morsec sweep` does)")] = False,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging

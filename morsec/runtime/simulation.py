@@ -157,6 +157,7 @@ class Simulation:
         self.outbox: list[tuple[list, Any]] = []
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.client_came = not self.options.wait_for_client  # a client's request or stream connection was seen
+        self.service_clients: set = set()  # --wait-for-client: the service clients that made requests
         self.loop_wall_time = 0.0  # wall-clock s from the first frame to the end of `run`
         self.quitting = False
         self.dynamics = True
@@ -202,7 +203,7 @@ class Simulation:
         self.time_services = TimeServices(self)
         if self.hold is not None:  # fixed_step: commands start real-time phases, numbered requests
             self.requests.on_request.append(self.request_arrived)
-        if not self.client_came:
+        if self.options.wait_for_client:
             self.requests.on_request.append(self._client_request)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
@@ -394,7 +395,10 @@ class Simulation:
             self.hold.stream_heard(connection)
 
     def _client_request(self, request) -> None:
+        """--wait-for-client: time starts with the first request, and the simulation ends when the last service
+        client that made requests has gone (the run's client ended)."""
         self.client_came = True
+        self.service_clients.add(request.client)
 
     def stream_opened(self, connection) -> None:
         self.client_came = True
@@ -413,6 +417,10 @@ class Simulation:
         if self.hold is not None:
             self.hold.forget(client)
         self.time_services.left(client)
+        if client in self.service_clients:
+            self.service_clients.discard(client)
+            if not self.service_clients:
+                self.request_quit()
 
     def request_quit(self, immediate: bool = False) -> None:
         self.quitting = True

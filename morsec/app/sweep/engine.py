@@ -4,8 +4,9 @@
   client's), so the machine runs one simulation per core, with no cluster to start;
 - with `--scheduler ADDRESS`, a Dask distributed cluster (`distributed.Client`): Dask places the runs on its
   workers' threads (start workers with `--nthreads` = their cores), redoes the runs of a worker that is lost,
-  and retries a run whose task failed. Each build travels to the workers once (scattered), and is written in
-  their temporary folder; each row comes back with its log's text.
+  and retries a run whose task failed. Each build travels once to every worker (scattered to all, so that a
+  lost worker loses no build) and is written in their temporary folder; each row comes back with its log's
+  text.
 
 Both yield rows as the runs finish."""
 
@@ -66,7 +67,7 @@ class DaskEngine:
         for task in tasks:
             if task.build_key not in builds:
                 files = execute.read_build(Path(task.build_dir))
-                builds[task.build_key] = self.client.scatter([files], hash=False)[0]  # one object, not a dict of them
+                builds[task.build_key] = self.client.scatter([files], hash=False, broadcast=True)[0]
         futures = {}
         for task in tasks:
             future = self.client.submit(execute.execute_run, task, builds[task.build_key], pure=False,
@@ -74,14 +75,15 @@ class DaskEngine:
             futures[future] = task
         try:
             for future in dask_completed(list(futures), loop=self.client.loop):
-                task = futures[future]
+                task = futures.pop(future)
                 try:
-                    yield future.result()
+                    row = future.result()
                 except Exception as err:  # the task could not be run (its worker was lost too often ...)
                     row = execute.run_row(task, execute.SIMULATION_FAILED,
-                                       f"Dask could not run it: {type(err).__name__}: {err}")
+                                          f"Dask could not run it: {type(err).__name__}: {err}")
                     row["_log"] = f"Dask: {type(err).__name__}: {err}\n"
-                    yield row
+                future.release()  # its row is here: a worker lost later does not make Dask run it again
+                yield row
         finally:
             self.client.cancel(list(futures))
 

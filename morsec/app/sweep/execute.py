@@ -2,9 +2,10 @@
 place, `morsec run` in fixed_step on ports the OS picks (no other run can have them), the client command with
 those ports in its environment, then the row: status, metrics, times, and the log's text.
 
-The run is over when the client ends (the simulation is stopped then), or when the simulation has run its
-duration (a client still running is stopped: SIGTERM to its process group, SIGKILL 5 s later); past the
-timeout everything is stopped. Standard library only, and no exception escapes: whatever happens is a row."""
+The run is over when the client ends (the simulation ends then: `--wait-for-client`, else SIGINT), or when the
+simulation has run its duration (a client still running is stopped: SIGTERM to its process group, SIGKILL 5 s
+later); past the timeout everything is stopped. Standard library only, and no exception escapes: whatever
+happens is a row."""
 
 from __future__ import annotations
 
@@ -37,6 +38,7 @@ TAIL = ("sim_time", "wall_time", "rtf", "host", "log")
 POLL = 0.005  # s between looks at the processes
 TABLE_QUIET = 0.02  # s without a new line after SCENE INITIALIZED: the table of ports is complete
 SIM_STOP_WAIT = 10.0  # s from SIGINT to SIGKILL of `morsec run`
+SIM_ENDS_WITH_CLIENT = 2.0  # s for `morsec run --wait-for-client` to end by itself once its client has ended
 CLIENT_STOP_WAIT = 5.0  # s from SIGTERM to SIGKILL of a client still running when the simulation ended
 _STATS = re.compile(r"^simulated ([0-9.eE+-]+) s in ([0-9.eE+-]+) s")
 _SERVER = re.compile(r"^  (services|lockstep)\s+(\S+):(\d+)")
@@ -93,6 +95,7 @@ class Run:
         self.sim: subprocess.Popen | None = None
         self.client: subprocess.Popen | None = None
         self.client_stopped = False  # the client was still running when the simulation ended: stopped by us
+        self.sim_stopped = False  # SIGINT sent to the simulation (its client ended, or the run timed out)
 
     def go(self) -> dict[str, Any]:
         task = self.task
@@ -192,10 +195,14 @@ class Run:
     def _stop(self, timed_out: bool) -> None:
         """Stop what still runs: the simulation (SIGINT: it quits cleanly), the client (its process group)."""
         sim, client = self.sim, self.client
+        if client is not None and client.poll() is not None and sim is not None and not timed_out:
+            with contextlib.suppress(subprocess.TimeoutExpired):  # it ends by itself when its client has left
+                sim.wait(SIM_ENDS_WITH_CLIENT)
         if client is not None and client.poll() is None:
             self.client_stopped = not timed_out
             _stop_group(client)
         if sim is not None and sim.poll() is None:
+            self.sim_stopped = True
             sim.send_signal(signal.SIGINT)
             try:
                 sim.wait(2.0 if timed_out else SIM_STOP_WAIT)
@@ -212,10 +219,11 @@ class Run:
         if timed_out:
             status, reason = TIMED_OUT, f"still running after {task.timeout:g} s (wall clock); stopped"
         elif not started:
-            status, reason = SIMULATION_FAILED, f"`morsec run` exited with status {sim.returncode} before {READY}" \
-                                                f"{self._last_error()}"
-        elif sim.returncode != 0:
-            status, reason = SIMULATION_FAILED, f"`morsec run` exited with status {sim.returncode}{self._last_error()}"
+            status, reason = SIMULATION_FAILED, f"`morsec run` {_ended(sim.returncode)} before {READY}" \
+                                                f"{self._last_error(True)}"
+        elif sim.returncode != 0 and not (self.sim_stopped and sim.returncode == -signal.SIGINT):
+            # (a SIGINT that came as the simulation was exiting by itself, its handler gone, ends it so)
+            status, reason = SIMULATION_FAILED, f"`morsec run` {_ended(sim.returncode)}{self._last_error(False)}"
         elif client is not None and client.returncode != 0 and not (
                 self.client_stopped and client.returncode in (-signal.SIGTERM, 128 + signal.SIGTERM)):
             status = CLIENT_FAILED
@@ -243,10 +251,11 @@ class Run:
         except OSError:
             return ""
 
-    def _last_error(self) -> str:
+    def _last_error(self, or_last_line: bool) -> str:
+        """': ' and the simulation's last error line (else, if asked, its last line), for the reason."""
         lines = [line.strip() for line in self.lines if line.strip()]
         errors = [line for line in lines if line.lower().startswith("error") or "Error" in line.split(":")[0]]
-        picked = errors[-1] if errors else (lines[-1] if lines else "")
+        picked = errors[-1] if errors else (lines[-1] if lines and or_last_line else "")
         return f": {picked}" if picked else ""
 
     def _client_error(self) -> str:
@@ -288,6 +297,15 @@ def run_row(task: Any, status: str, reason: str) -> dict[str, Any]:
     row.update({path: cell(value) for path, value in task.values.items()})
     row.update(status=status, reason=reason, host=socket.gethostname())
     return row
+
+
+def _ended(status: int) -> str:
+    if status < 0:
+        try:
+            return f"died of {signal.Signals(-status).name}"
+        except ValueError:
+            return f"died of signal {-status}"
+    return f"exited with status {status}"
 
 
 def _stop_group(proc: subprocess.Popen) -> None:
