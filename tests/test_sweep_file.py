@@ -5,6 +5,7 @@ metrics computed from stream files. The runs themselves: tests/test_sweep_runs.p
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -261,3 +262,15 @@ def test_the_summary_pools_runs_per_parameter_value():
     text = format_summary(groups)
     assert text.splitlines()[0].split() == ["speed", "runs", "failed", "d"]
     assert text.splitlines()[2].split() == ["1", "2", "0", "2", "±", "1.414"]
+
+
+def test_the_sweeps_page_documents_every_key_and_client_variable():
+    from morsec.app.sweep.spec import MetricSpec, SweepSpec
+    page = (ROOT / "docs" / "sweeps.md").read_text(encoding="utf-8")
+    for model in (SweepSpec, MetricSpec):
+        for name in model.model_fields:
+            assert f"| `{name}` |" in page, f"docs/sweeps.md does not describe {model.__name__}.{name}"
+    execute = (ROOT / "morsec" / "app" / "sweep" / "execute.py").read_text(encoding="utf-8")
+    for variable in sorted(set(re.findall(r"\b(MORSEC_[A-Z_]+)\b", execute)) - {"MORSEC_PORT_"}):
+        assert f"`{variable}`" in page, f"docs/sweeps.md does not describe {variable}"
+    assert "`MORSEC_PORT_<NAME>`" in page
