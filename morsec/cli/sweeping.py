@@ -29,6 +29,8 @@ def sweep(
     summarize: exit 0 when every run ended ok, 1 when some did not, 2 for a mistake in the sweep."""
     from morsec.app.sweep.driver import run_sweep
     from morsec.app.sweep.summary import counts, format_summary
+    if scheduler and workers:
+        fail(MorsecError("--workers is for this machine: a Dask cluster has its own (dask worker --nthreads N)"))
     results = out or Path("results") / sweep_file.stem
     reporter = Bar() if on_terminal() else Lines()
     try:

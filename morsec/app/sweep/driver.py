@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
 
+from morsec.app.sweep.execute import cell
 from morsec.app.sweep.plan import RunTask, plan
 from morsec.app.sweep.spec import Sweep, load_sweep
 from morsec.app.sweep.summary import Group, plot_summary, summarize, write_summary
@@ -67,7 +68,6 @@ def run_sweep(path: Path, out: Path, report: Reporter, resume: bool = False, sch
         engine.close()
     runs = {task.run for task in tasks}
     rows = [row for row in table.rows if row["run"] in runs]
-    from morsec.app.sweep.execute import cell
     order = {p: list(dict.fromkeys(cell(t.values[p]) for t in tasks if p in t.values)) for p in parameters}
     groups = summarize(rows, parameters, order)
     outcome = Outcome(out, rows, groups, len(todo), files=[out / PARQUET, out / CSV, write_summary(groups, out)])

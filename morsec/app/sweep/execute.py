@@ -39,12 +39,13 @@ POLL = 0.005  # s between looks at the processes
 TABLE_QUIET = 0.02  # s without a new line after SCENE INITIALIZED: the table of ports is complete
 SIM_STOP_WAIT = 10.0  # s from SIGINT to SIGKILL of `morsec run`
 SIM_ENDS_WITH_CLIENT = 2.0  # s for `morsec run --wait-for-client` to end by itself once its client has ended
+CLIENT_GRACE = 0.5  # s a client still running when the simulation ran its duration has to end by itself
 CLIENT_STOP_WAIT = 5.0  # s from SIGTERM to SIGKILL of a client still running when the simulation ended
 _STATS = re.compile(r"^simulated ([0-9.eE+-]+) s in ([0-9.eE+-]+) s")
 _SERVER = re.compile(r"^  (services|lockstep)\s+(\S+):(\d+)")
 _STREAM = re.compile(r"^  (\S+)\s+(IN|OUT)\s+socket\s+(\S+):(\d+)\s*$")
 
-_live: set[subprocess.Popen] = set()
+_live: dict[subprocess.Popen, bool] = {}  # the processes of the runs going on: True for a process group
 _live_lock = threading.Lock()
 cancelled = threading.Event()  # set by the local engine when the sweep is interrupted: no new run starts
 
@@ -110,25 +111,45 @@ class Run:
         reader.start()
         timed_out = False
         ports: dict[str, Any] | None = None
+        sim_ended_at = None
         try:
             while True:
-                if time.monotonic() > deadline:
+                now = time.monotonic()
+                if now > deadline:
                     timed_out = True
                     break
                 sim_ended = self.sim.poll() is not None
+                if sim_ended:
+                    reader.join(5.0)  # all it printed
                 if ports is None and self._table_complete(sim_ended):
                     ports = self._ports()
-                    if task.client:
+                    if task.client and not sim_ended:
                         self.client = self._start_client(ports)
                 if self.client is not None and self.client.poll() is not None:
-                    break
+                    break  # the client ended: so does the run
                 if sim_ended:
-                    break
+                    if self.client is None:
+                        break
+                    if self._ran_its_duration():  # the client is still there: it has CLIENT_GRACE to end
+                        sim_ended_at = sim_ended_at or now
+                        if now - sim_ended_at > CLIENT_GRACE:
+                            break
+                    # else the simulation ended because its client left: the client ends in its own time
                 time.sleep(POLL)
         finally:
             self._stop(timed_out)
             reader.join(5.0)
-        return self._result(timed_out, ports is not None)
+        return self._result(timed_out, READY in self.lines)
+
+    def _stats(self) -> tuple[float, float] | None:
+        """(simulated seconds, wall seconds of the loop) from `morsec run`'s closing line."""
+        found = next((m for line in self.lines if (m := _STATS.match(line))), None)
+        return (float(found.group(1)), float(found.group(2))) if found else None
+
+    def _ran_its_duration(self) -> bool:
+        """Whether the simulation ended at its duration, or crashed (not because its client left)."""
+        stats = self._stats()
+        return stats is None or stats[0] >= self.task.duration - 1e-6
 
     def sim_command(self) -> list[str]:
         task = self.task
@@ -140,7 +161,7 @@ class Run:
     def _start(self, cmd: list[str], **kwargs) -> subprocess.Popen:
         proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, preexec_fn=die_with_parent, **kwargs)
         with _live_lock:
-            _live.add(proc)
+            _live[proc] = bool(kwargs.get("start_new_session"))
         return proc
 
     def _read(self) -> None:
@@ -210,7 +231,8 @@ class Run:
                 sim.kill()
                 sim.wait()
         with _live_lock:
-            _live.difference_update({p for p in (sim, client) if p is not None})
+            for proc in (sim, client):
+                _live.pop(proc, None)
 
     def _result(self, timed_out: bool, started: bool) -> dict[str, Any]:
         task, sim, client = self.task, self.sim, self.client
@@ -238,9 +260,9 @@ class Run:
         if client is not None:
             for key, value in client_metrics(self._client_text("client.out")).items():
                 row[f"client.{key}" if key in row or key in TAIL else key] = cell(value)
-        stats = next((m for line in self.lines if (m := _STATS.match(line))), None)
+        stats = self._stats()
         if stats:
-            row["sim_time"], loop = float(stats.group(1)), float(stats.group(2))
+            row["sim_time"], loop = stats
             row["rtf"] = row["sim_time"] / loop if loop > 0 else None
         row["_log"] = self._log(status, reason)
         return row
@@ -323,7 +345,10 @@ def stop_everything() -> None:
     """An interrupted sweep: no new run starts, and the processes of the running ones are stopped."""
     cancelled.set()
     with _live_lock:
-        procs = list(_live)
-    for proc in procs:
+        procs = list(_live.items())
+    for proc, group in procs:
         with contextlib.suppress(ProcessLookupError, OSError):
-            os.killpg(proc.pid, signal.SIGKILL) if proc.args[:1] == ["/bin/sh"] else proc.kill()
+            if group:
+                os.killpg(proc.pid, signal.SIGKILL)
+            else:
+                proc.kill()

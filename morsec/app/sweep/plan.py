@@ -22,7 +22,6 @@ from morsec.app.sweep.paths import PathError, set_value
 from morsec.app.sweep.spec import MAX_RUNS, Sweep
 from morsec.errors import MorsecError, SceneError, yaml_path
 
-SCENE_SUFFIXES = (".yaml", ".yml", ".toml")
 BUILDS = "builds"
 
 
@@ -93,7 +92,7 @@ def plan(sweep: Sweep, out: Path) -> tuple[list[Variant], list[RunTask]]:
     scene = sweep.scene
     if not scene.is_file():
         raise sweep.error(f"no such scene file {str(scene)!r}", "scene")
-    if scene.suffix.lower() not in SCENE_SUFFIXES:
+    if scene.suffix not in buildcache.CACHED_SUFFIXES:
         raise sweep.error("a sweep's scene is a YAML or TOML file (a builder script converts to one: "
                           f"morsec convert {sweep.spec.scene} -o scene.yaml)", "scene")
     base, smap = read_scene_file(scene)
