@@ -205,8 +205,8 @@ def test_a_killed_sweep_keeps_its_rows_and_resume_runs_only_the_rest(project):
 
 def test_the_example_sweep_runs_and_draws_its_summary(tmp_path):
     out = tmp_path / "go_to_goal"
-    result = subprocess.run([sys.executable, "-m", "morsec", "sweep", str(EXAMPLE), "-o", str(out), "--plot"],
-                            capture_output=True, text=True, timeout=600, cwd=ROOT)
+    result = subprocess.run([sys.executable, "-m", "morsec", "sweep", str(EXAMPLE), "-o", "go_to_goal", "--plot"],
+                            capture_output=True, text=True, timeout=600, cwd=tmp_path)  # a folder relative to here
     assert result.returncode == 0, result.stdout + result.stderr
     rows = pq.read_table(out / PARQUET).to_pylist()
     assert len(rows) == 8 and {r["status"] for r in rows} == {"ok"}

@@ -112,7 +112,7 @@ def plan(sweep: Sweep, out: Path) -> tuple[list[Variant], list[RunTask]]:
         instrument.add_sensors(sweep.spec.metrics, data)
         key = hashlib.sha256(f"{inputs}\n".encode() + json.dumps(data, sort_keys=True).encode()).hexdigest()
         variant.build_key = key[:16]
-        variant.build = out / BUILDS / variant.build_key
+        variant.build = (out / BUILDS / variant.build_key).resolve()  # the runs start in folders of their own
         if not buildcache.up_to_date(variant.build, key):
             _build(sweep, variant, data, smap, cat, concrete)
             buildcache.record(variant.build, key)
