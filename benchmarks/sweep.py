@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -86,7 +87,8 @@ def main(argv=None) -> int:
                               f"seeds: {args.runs}\n", encoding="utf-8")
         _, tasks = plan(load_sweep(sweep_file), folder / "out")
         print(f"{len(tasks)} runs of the reference scene, {args.duration:g} simulated s each, no client; "
-              f"Python {sys.version.split()[0]}", flush=True)
+              f"Python {sys.version.split()[0]}; {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} "
+              "(other work on the machine takes cores from the speed-ups)", flush=True)
         sequential, rows = timed(LocalEngine(1), tasks)
         report("one after the other", sequential, rows, 1, None)
         wall, rows = timed(LocalEngine(2), tasks)
