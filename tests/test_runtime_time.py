@@ -465,3 +465,34 @@ def test_invalid_scene_exits_2(failures):
     result = failures["invalid scene"]
     line = one_line_error(result, 2)
     assert str(result.path) in line and "translte" in line and "translate" in line  # where, what, a suggestion
+
+
+def test_wait_for_client_starts_time_with_the_client_and_ends_the_run_when_it_leaves(tmp_path):
+    """`morsec run --wait-for-client` (morsec sweep's runs): no frame before the client's first request, however
+    long it takes to come; the simulation ends once it has left, printing how far it got; with --port-base 0 the
+    lockstep port too is the OS's pick, so that runs side by side never meet."""
+    from runtime_helpers import ServiceClient
+    content = scene(environment={"stream_managers": {"socket": {"time_sync": True}}})
+    build = build_folder(scene_file(tmp_path, content), tmp_path / "build")
+    proc = subprocess.Popen([str(MORSEC), "run", str(build), "--duration", "30", "--port-base", "0",
+                             "--service-port", "0", "--wait-for-client"], stdout=subprocess.PIPE, text=True,
+                            cwd=tmp_path)
+    try:
+        lines = [proc.stdout.readline() for _ in range(3)]
+        assert lines[0].strip() == "SCENE INITIALIZED"
+        servers = dict(line.split()[:2] for line in lines[1:])
+        assert not servers["lockstep"].endswith(":6000")
+        time.sleep(0.5)  # half a second of wall clock, in fixed_step: not a frame
+        client = ServiceClient(int(servers["services"].rpartition(":")[2]))
+        assert client.ok("time", "statistics")["simulated_time"] == 0.0
+        client.ok("time", "sleep", 0.5)
+        assert client.ok("time", "statistics")["simulated_time"] >= 0.5
+        client.sock.close()
+        out, _ = proc.communicate(timeout=30)
+    finally:
+        proc.kill()
+    assert proc.returncode == 0
+    closing = out.splitlines()
+    assert closing[-1] == "EXITING SIMULATION"
+    simulated = float(closing[-2].split()[1])
+    assert closing[-2].startswith("simulated ") and 0.5 <= simulated < 5.0 and "x real time)" in closing[-2]

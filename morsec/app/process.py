@@ -13,7 +13,6 @@ MORSE's test framework (`morse.testing.testing.MorseTestCase`) is a thin layer o
 from __future__ import annotations
 
 import collections
-import ctypes
 import inspect
 import os
 import signal
@@ -25,6 +24,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any, TextIO
 
+from morsec.app.children import die_with_parent
 from morsec.compiler.build import MANIFEST, compile_scene, write_build
 from morsec.component.catalogue import Catalogue, load_catalogue
 from morsec.errors import MorsecError
@@ -92,14 +92,6 @@ def build_call(fn: Callable[[], Any], out_dir: Path, catalogue: Catalogue | None
 
 # ---------------------------------------------------------------- the child process
 
-def _die_with_parent() -> None:  # pragma: no cover - runs in the child, between fork and exec
-    """Linux: the simulation gets SIGTERM when the process that started it dies (a killed test run)."""
-    try:
-        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        pass
-
-
 class SimulationProcess:
     """`morsec run BUILD` as a child process whose output (stdout and stderr) is appended to `log`, run in the
     log's folder."""
@@ -147,7 +139,7 @@ class SimulationProcess:
         self.process = subprocess.Popen(
             self.command, cwd=self.log_path.parent, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
             stdin=subprocess.DEVNULL, env=env, text=True, encoding="utf-8", errors="replace", bufsize=1,
-            preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None)
+            preexec_fn=die_with_parent)
         self._reader = threading.Thread(target=self._read, name="morsec-run-output", daemon=True)
         self._reader.start()
         deadline = time.monotonic() + timeout

@@ -44,6 +44,10 @@ def run(
     view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
     output_dir: Annotated[Path | None, typer.Option(
         "--output-dir", help="folder the text streams write their files into (default: the current folder)")] = None,
+    wait_for_client: Annotated[bool, typer.Option(
+        "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
+        "simulation ends when the service clients that made requests have all left (runs started with their "
+        "client, as `morsec sweep` does)")] = False,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -65,10 +69,12 @@ def run(
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
-                             output_dir=output_dir or Path.cwd())
-        run_simulation(build_dir, options, duration)
+                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client)
+        simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)
+    factor = f" ({simulated / wall:.1f}x real time)" if wall > 0 else ""
+    typer.echo(f"simulated {simulated:.6f} s in {wall:.3f} s{factor}")
     typer.echo("EXITING SIMULATION")
 
 

@@ -20,37 +20,47 @@ YAML_SUFFIXES = (".yaml", ".yml")
 TOML_SUFFIXES = (".toml",)
 
 
+SCENE_MAPPING = "a scene must be a mapping with environment, robots, objects and zones"
+
+
 def read_scene_file(path: FilePath) -> tuple[Any, SourceMap]:
+    return read_data_file(path, "scene", SCENE_MAPPING)
+
+
+def read_data_file(path: FilePath, kind: str, mapping: str) -> tuple[dict, SourceMap]:
+    """A YAML or TOML file of `kind` ("scene", "sweep": the word its errors use) as plain data and the position
+    of every key and value; a file that is not a mapping is refused with `mapping`, the sentence saying what
+    it should be."""
     path = FilePath(path)
     suffix = path.suffix.lower()
     if suffix not in YAML_SUFFIXES + TOML_SUFFIXES:
         if path.is_dir():
-            raise SceneError(f"{path}: is a folder, not a scene file")
-        raise SceneError(f"{path}: unknown scene format {suffix!r}; use .yaml, .yml, .toml or a builder script .py")
-    text = _read_text(path)
+            raise SceneError(f"{path}: is a folder, not a {kind} file")
+        extra = " or a builder script .py" if kind == "scene" else ""
+        raise SceneError(f"{path}: unknown {kind} format {suffix!r}; use .yaml, .yml, .toml{extra}")
+    text = _read_text(path, kind)
     if suffix in YAML_SUFFIXES:
         data, smap = parse_yaml(text, str(path))
     else:
         data, smap = parse_toml(text, str(path))
     if not isinstance(data, dict):
-        raise SceneError(f"a scene must be a mapping with environment, robots, objects and zones, got "
-                         f"{describe_value(data)}", str(path), 1, 1)
+        raise SceneError(f"{mapping}, got {describe_value(data)}", str(path), 1, 1)
     return data, smap
 
 
-def _read_text(path: FilePath) -> str:
+def _read_text(path: FilePath, kind: str) -> str:
     """The file's text, refused past MAX_SCENE_BYTES without reading further (a device, a runaway file)."""
     try:
         with open(path, "rb") as f:
             data = f.read(MAX_SCENE_BYTES + 1)
     except FileNotFoundError:
-        raise SceneError(f"{path}: no such scene file") from None
+        raise SceneError(f"{path}: no such {kind} file") from None
     except IsADirectoryError:
-        raise SceneError(f"{path}: is a folder, not a scene file") from None
+        raise SceneError(f"{path}: is a folder, not a {kind} file") from None
     except OSError as err:
         raise SceneError(f"{path}: cannot read: {err.strerror or err}") from None
     if len(data) > MAX_SCENE_BYTES:
-        raise SceneError(f"{path}: larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+        raise SceneError(f"{path}: larger than {MAX_SCENE_BYTES} bytes: not a {kind} file")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as err:

@@ -54,7 +54,9 @@ class Socket(Middleware):
         self.server: ServiceServer | None = None
         self.sync: SyncServer | None = None
         if settings.get("time_sync"):
-            self.sync = SyncServer(context.poller, context.bind, settings["sync_port"])
+            # --port-base 0: every server on a port the OS picks, the lockstep port too (runs side by side)
+            port = 0 if context.port_base == 0 else settings["sync_port"]
+            self.sync = SyncServer(context.poller, context.bind, port)
 
     def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]) -> SocketStream:
         port, base = endpoint["port"], self.context.port_base

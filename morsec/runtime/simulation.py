@@ -54,6 +54,7 @@ class RunOptions:
     output_dir: Path = field(default_factory=Path.cwd)  # where text streams write
     view: str | None = None  # "web" | "native": watch the simulation
     view_port: int = 8080
+    wait_for_client: bool = False  # no frame before a client's first request or stream connection (sweeps)
 
 
 @dataclass
@@ -156,6 +157,9 @@ class Simulation:
         # the frame's sensor messages, (streams, message) in the sensors' order, sent at the end of the frame
         self.outbox: list[tuple[list, Any]] = []
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
+        self.client_came = not self.options.wait_for_client  # a client's request or stream connection was seen
+        self.service_clients: set = set()  # --wait-for-client: the service clients that made requests
+        self.loop_wall_time = 0.0  # wall-clock s from the first frame to the end of `run`
         self.quitting = False
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
@@ -201,6 +205,8 @@ class Simulation:
         self.time_services = TimeServices(self)
         if self.hold is not None:  # fixed_step: commands start real-time phases, numbered requests
             self.requests.on_request.append(self.request_arrived)
+        if self.options.wait_for_client:
+            self.requests.on_request.append(self._client_request)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
             self.requests.expose(name, obj, _services_of(obj))
@@ -390,11 +396,19 @@ class Simulation:
         if self.hold is not None:
             self.hold.stream_heard(connection)
 
+    def _client_request(self, request) -> None:
+        """--wait-for-client: time starts with the first request, and the simulation ends when the last service
+        client that made requests has gone (the run's client ended)."""
+        self.client_came = True
+        self.service_clients.add(request.client)
+
     def stream_opened(self, connection) -> None:
+        self.client_came = True
         if self.hold is not None and not (self.sync is not None and self.sync.engaged):
             self.hold.stream_opened(connection)
 
     def reader_opened(self) -> None:
+        self.client_came = True
         self.last_reader_opened = time.perf_counter()
 
     def stream_closed(self, connection) -> None:
@@ -405,6 +419,10 @@ class Simulation:
         if self.hold is not None:
             self.hold.forget(client)
         self.time_services.left(client)
+        if client in self.service_clients:
+            self.service_clients.discard(client)
+            if not self.service_clients:
+                self.request_quit()
 
     def request_quit(self, immediate: bool = False) -> None:
         self.quitting = True
@@ -470,6 +488,7 @@ class Simulation:
 
     def run(self, duration: float | None = None) -> None:
         next_poll = 0.0
+        started = None
         try:
             while not self.quitting:
                 if duration is not None and self.clock.elapsed >= duration - 1e-9:
@@ -484,6 +503,13 @@ class Simulation:
                     next_poll = now + POLL_PERIOD
                 if self.quitting:
                     break
+                if not self.client_came:  # --wait-for-client: time starts with the client
+                    if self.sync is not None and self.sync.engaged:
+                        self.client_came = True
+                    else:
+                        self.poller.poll(MAX_POLL_WAIT / 20)
+                        self._flush()
+                        continue
                 if self.sync is not None and self.sync.engaged:
                     if not self.sync.take():
                         self.poller.poll(0.01)
@@ -495,6 +521,8 @@ class Simulation:
                         self.poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
                         continue
+                if started is None:
+                    started = time.perf_counter()
                 self.frame()  # ends with a flush
                 if self.view is not None:
                     self.view.sync()
@@ -507,6 +535,8 @@ class Simulation:
                 self._flush()
                 self._wait(self._delay())
         finally:
+            if started is not None:
+                self.loop_wall_time = time.perf_counter() - started
             self.close()
 
     def _delay(self) -> float:

@@ -45,7 +45,9 @@ def validate_scene(data: dict, smap: SourceMap, cat: Catalogue) -> BaseModel:
 
 # ---------------------------------------------------------------- pydantic errors -> one clear line
 
-def scene_error(err: ValidationError, data: Any, smap: SourceMap, cat: Catalogue) -> SceneError:
+def scene_error(err: ValidationError, data: Any, smap: SourceMap, cat: Catalogue | None = None) -> SceneError:
+    """One located line for `err`; without a catalogue (a file that is not a scene: a sweep), the messages that
+    name component types and properties are not asked for."""
     problems = []
     for error in err.errors(include_url=False):
         path, message, at_key = _explain(error, data, cat)
@@ -63,7 +65,7 @@ def scene_error(err: ValidationError, data: Any, smap: SourceMap, cat: Catalogue
     return SceneError(message, smap.file, line, col)
 
 
-def _explain(error: ErrorDetails, data: Any, cat: Catalogue) -> tuple[tuple, str, bool]:
+def _explain(error: ErrorDetails, data: Any, cat: Catalogue | None) -> tuple[tuple, str, bool]:
     """(path in the file, message, whether the position is the key's rather than the value's)."""
     path, at_key = _data_path(error["loc"], data)
     kind = error["type"]
@@ -75,9 +77,9 @@ def _explain(error: ErrorDetails, data: Any, cat: Catalogue) -> tuple[tuple, str
         key, allowed = ctx["key"], ctx.get("allowed", ())
         hint = did_you_mean(str(key), allowed) or f"; allowed keys: {', '.join(allowed)}"
         return path + (key,), f"unknown key {key!r}{hint}", True
-    if kind == "extra_forbidden" and len(path) >= 2 and path[-2] == "properties":
+    if cat is not None and kind == "extra_forbidden" and len(path) >= 2 and path[-2] == "properties":
         return path, _unknown_property(path, data, cat), True
-    if kind == "union_tag_invalid":
+    if cat is not None and kind == "union_tag_invalid":
         tag = ctx.get("tag")
         tags = re.findall(r"'([^']*)'", ctx.get("expected_tags", ""))
         label = "robot" if len(path) == 2 and path[0] == "robots" else "component"
@@ -88,7 +90,7 @@ def _explain(error: ErrorDetails, data: Any, cat: Catalogue) -> tuple[tuple, str
             ids = [t for t in tags if t == t.lower()] or tags
             hint = f" (known: {one_of(ids)})"
         return path + ("type",), f"unknown {label} type {shown!r}{hint}", False
-    if kind == "union_tag_not_found":
+    if cat is not None and kind == "union_tag_not_found":
         robot = len(path) == 2 and path[0] == "robots"
         ids = cat.ids("robots") if robot else sorted(cat.devices())
         example = f", e.g. {ids[0]!r}" if ids else ""
