@@ -83,8 +83,8 @@ def _readme_body(cls) -> str:
 
 def scene_for(kind: str, cls, cat: Catalogue) -> str:
     """A small scene showing one component (a sensor or actuator on a robot that can carry it)."""
-    if kind == "environments":
-        return f"environment: {{name: {cls.id}}}\n"
+    if kind == "environments":  # seen from afar: the far clip plane beyond the world's far side
+        return f"environment: {{name: {cls.id}, camera: {{clip: [0.1, 1000.0]}}}}\n"
     if kind == "robots":
         z = 1.0 if getattr(cls.Properties(), "NoGravity", False) else 0.0
         return f"robots:\n  - {{name: subject, type: {cls.id}, translate: [0, 0, {z}]}}\n"
@@ -121,7 +121,7 @@ def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None
                 model = mujoco.MjModel.from_xml_path(str(build / "scene.xml"))
                 data = mujoco.MjData(model)
                 mujoco.mj_forward(model, data)
-                camera = _camera(model, data, kind)
+                camera = _camera(model, data, kind, cls)
                 renderer = open_renderer(model, *PICTURE_SIZE)
                 try:
                     renderer.update_scene(data, camera=camera)
@@ -137,13 +137,21 @@ def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None
     return written
 
 
-def _camera(model, data, kind: str):
-    """A free camera framing the subject: its bodies' geoms (all of the scene for an environment)."""
+def _camera(model, data, kind: str, cls=None):
+    """A free camera framing the subject: its bodies' geoms (an environment: the box its `bounds` give, or
+    the 30 m around the origin)."""
     import mujoco
     camera = mujoco.MjvCamera()
     if kind == "environments":
-        camera.lookat[:] = (0, 0, 0)
-        camera.distance, camera.azimuth, camera.elevation = 28.0, 120.0, -40.0
+        bounds = getattr(cls, "bounds", None)
+        if bounds is None:
+            camera.lookat[:] = (0, 0, 0)
+            camera.distance, camera.azimuth, camera.elevation = 28.0, 120.0, -40.0
+            return camera
+        lo, hi = np.array(bounds[0], dtype=float), np.array(bounds[1], dtype=float)
+        camera.lookat[:] = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2])
+        span = float(np.linalg.norm(hi[:2] - lo[:2]))
+        camera.distance, camera.azimuth, camera.elevation = 0.85 * span + 2.0, 120.0, -50.0
         return camera
     name = "subject" if kind != "sensors" and kind != "actuators" else "carrier.subject"
     if kind in ("sensors", "actuators"):

@@ -115,7 +115,13 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     env_context = {"scene": scene, "environment": scene.environment, "asset_dir": asset_dir(environment),
                    "id": environment.id}
     env_xml = render(env, _own_template(cat, environment, environment.template), **env_context)
+    terrain = environment.terrain.mjcf() if environment.terrain is not None else None
+    if environment.layout or terrain:
+        env_xml = Markup("\n").join([env_xml, render(env, "mjcf/layout.xml.j2", parts=environment.layout,
+                                                     terrain=terrain)])
     asset_xml = [_class_assets(environment, cat, env, assets, env_context)]
+    if terrain:
+        asset_xml.append(render(env, "mjcf/layout_assets.xml.j2", terrain=terrain))
     for cls in _used_classes(scene, cat):
         asset_xml.append(_class_assets(cls, cat, env, assets, {"asset_dir": asset_dir(cls), "id": cls.id}))
 
