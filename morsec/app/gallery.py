@@ -88,6 +88,15 @@ def scene_for(kind: str, cls, cat: Catalogue) -> str:
     if kind == "robots":
         z = 1.0 if getattr(cls.Properties(), "NoGravity", False) else 0.0
         return f"robots:\n  - {{name: subject, type: {cls.id}, translate: [0, 0, {z}]}}\n"
+    if kind == "props" and cls.variants:  # a props file: its objects in a row along x, standing on the floor
+        rows, x = [], 0.0
+        for i, (name, spec) in enumerate(cls.variants.items()):
+            lowest = min(part.centre[2] - part.size[2] / 2 for part in spec["parts"])
+            left = min(part.centre[0] - part.size[0] / 2 for part in spec["parts"])
+            right = max(part.centre[0] + part.size[0] / 2 for part in spec["parts"])
+            rows.append(f"  - {{name: subject_{i}, type: {name}, translate: [{x - left:.3f}, 0, {-lowest:.3f}]}}\n")
+            x += right - left + max(0.05, 0.15 * spec["size"][2])
+        return "objects:\n" + "".join(rows)
     if kind == "props":
         return f"objects:\n  - {{name: subject, type: {cls.id}, translate: [0, 0, 0.25]}}\n"
     carrier = next((rid for rid, rc in sorted(cat.by_kind["robots"].items())
@@ -156,10 +165,11 @@ def _camera(model, data, kind: str, cls=None):
     name = "subject" if kind != "sensors" and kind != "actuators" else "carrier.subject"
     if kind in ("sensors", "actuators"):
         name = "carrier"  # the component on its carrier robot
-    root = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+    roots = {int(model.body_rootid[b]) for b in range(model.nbody)
+             if (model.body(b).name == name or model.body(b).name.startswith(name + "_"))}  # subject_0 ...
     points = []
     for g in range(model.ngeom):
-        same_root = model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[root]
+        same_root = int(model.body_rootid[model.geom_bodyid[g]]) in roots
         if same_root and model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE:
             points.append(data.geom_xpos[g] + model.geom_rbound[g] * np.array([[1, 1, 1], [-1, -1, -1]]))
     pts = np.vstack(points) if points else np.zeros((1, 3))

@@ -486,9 +486,27 @@ def _move_bodies(root: ET.Element, mounts: dict[str, tuple[str, str | None]]) ->
 def _object(obj, cat: Catalogue, env) -> str:
     cls = cat.get("props", obj.type)
     color = list(obj.color) + [1.0] if len(obj.color) == 3 else list(obj.color)
+    variant = cat.variant(obj.type)
     fragment = render(env, _own_template(cat, cls, cls.template), name=obj.name, size=obj.size,
                       half=[s / 2 for s in obj.size], color=color, mass=obj.mass, dynamic=obj.dynamic,
-                      properties=obj.properties)
+                      properties=obj.properties, parts=_scaled_parts(variant, obj.size, obj.mass))
     return render(env, "mjcf/object.xml.j2", obj={
         "name": obj.name, "pos": obj.translate, "quat": euler_to_quat(*obj.rotate), "dynamic": obj.dynamic,
         "fragment": fragment, "site": bool(obj.locks and obj.dynamic)})
+
+
+def _scaled_parts(variant: dict | None, size, mass: float) -> list[dict]:
+    """An object of a props file: its parts (morsec.kits.layout.PropPart) scaled from the object's own size to
+    the entry's `size` about its origin, each with its share of the mass (by volume) and MuJoCo's geom size."""
+    if variant is None:
+        return []
+    scale = [s / d for s, d in zip(size, variant["size"])]
+    parts = variant["parts"]
+    volumes = [p.size[0] * p.size[1] * p.size[2] for p in parts]
+    out = []
+    for piece, volume in zip(parts, volumes):
+        full = [v * k for v, k in zip(piece.size, scale)]
+        geom_size = [full[0] / 2, full[2] / 2] if piece.shape == "cylinder" else [v / 2 for v in full]
+        out.append({"name": piece.name, "shape": piece.shape, "pos": [v * k for v, k in zip(piece.centre, scale)],
+                    "size": geom_size, "rgba": piece.rgba, "mass": mass * volume / sum(volumes)})
+    return out

@@ -338,6 +338,11 @@ class Prop(Component):
     # properties), e.g. a MORSE .blend object's: {"size": [0.04, 0.12, 0.2], "dynamic": True}; properties
     # the entry gives are added to the prop's
     defaults: ClassVar[dict] = {}
+    # a prop kind holding several objects, as a MORSE props file does (props/objects: RollingChair,
+    # BlackVideotape, ...): {object name: its defaults (size, color, dynamic, mass, properties) and its
+    # "parts" (morsec.kits.layout.PropPart, at that size, around the object's origin)}. Each name is a `type:`
+    # of its own (and PassiveObject's name); the kind's template draws the named object's parts
+    variants: ClassVar[dict[str, dict]] = {}
 
 
 KINDS: dict[str, type[Component]] = {

@@ -208,3 +208,28 @@ def bump(x: float, y: float, cx: float, cy: float, radius: float) -> float:
     """A smooth round hill of height 1 centred on (cx, cy), 0 beyond `radius`."""
     d = math.hypot(x - cx, y - cy) / radius
     return 0.5 * (1 + math.cos(math.pi * d)) if d < 1 else 0.0
+
+
+@dataclass(frozen=True)
+class PropPart:
+    """One shape of a prop object (`Prop.variants`): a box or an upright cylinder (x, y: its diameter) of full
+    size `size` centred at `centre` from the object's origin; `rgba` None: the object's colour."""
+
+    name: str
+    centre: Vec3
+    size: Vec3
+    shape: Literal["box", "cylinder"] = "box"
+    rgba: Rgba | None = None
+
+
+def prop_object(parts: Iterable[PropPart], color: Iterable[float], mass: float = 1.0, dynamic: bool = True,
+                properties: dict | None = None) -> dict:
+    """A `Prop.variants` entry: the object's parts, its size (what its parts fill, around its origin: the
+    full extent of their bounding box), colour, mass, whether it moves, its game properties."""
+    parts = tuple(parts)
+    size = [round(max(p.centre[k] + p.size[k] / 2 for p in parts) - min(p.centre[k] - p.size[k] / 2 for p in parts), 4)
+            for k in range(3)]
+    entry = {"size": size, "color": [float(c) for c in color], "dynamic": dynamic, "mass": mass, "parts": parts}
+    if properties:
+        entry["properties"] = dict(properties)
+    return entry

@@ -190,7 +190,7 @@ def test_the_grande_salles_rolling_chairs_are_morses_prop(tmp_path):
     text = "environment: {name: laas/grande_salle, time: {strategy: fixed_step, relative: true}}\n"
     with simulate(text, tmp_path) as h:
         chairs = [o for o in h.sim.scene["objects"] if o["name"].startswith("Rolling_Chair")]
-        assert len(chairs) == 12 and {c["type"] for c in chairs} == {"rolling_chair"}
+        assert len(chairs) == 12 and {c["type"] for c in chairs} == {"RollingChair"}
         h.run_for(1.0)
         # where MORSE's stand, its seat under a desk (a top on legs), untouched by it
         assert h.body_pose("Rolling_Chair_007")[0] == pytest.approx([5.66, -6.63, 0.0], abs=0.01)
