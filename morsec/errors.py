@@ -55,9 +55,18 @@ def yaml_path(path: Sequence) -> str:
 
 
 def close_matches(word: str, choices: Iterable[str], n: int = 3) -> list[str]:
-    """The choices closest to `word`, best first; case differences count as close."""
+    """The choices closest to `word`, best first; case differences count as close, and a word without a
+    folder is compared with the last part of the choices that have one ('indoor-2' is close to
+    'indoors-1/indoor-1')."""
     choices = list(dict.fromkeys(choices))
     matches = difflib.get_close_matches(word, choices, n=n, cutoff=0.6)
+    if "/" not in word:
+        tails: dict[str, str] = {}
+        for choice in choices:
+            if "/" in choice:
+                tails.setdefault(choice.rsplit("/", 1)[1], choice)
+        by_tail = [tails[t] for t in difflib.get_close_matches(word, tails, n=n, cutoff=0.6)]
+        matches = list(dict.fromkeys([*by_tail, *matches]))[:n]
     folded = {c.lower(): c for c in choices}
     exact = folded.get(word.lower())
     if exact is not None and exact not in matches:

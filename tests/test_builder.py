@@ -379,15 +379,27 @@ def test_morse_only_settings_land_in_the_manifest(tmp_path, capsys):
 
 
 def test_blend_environment_is_morse_only(tmp_path, capsys):
+    blend = tmp_path / "flat.blend"
+    blend.write_bytes(b"BLENDER-v279")
+    path = write(tmp_path, f"""
+        from morse.builder import *
+        robot = ATRV()
+        env = Environment('{blend}')
+    """)
+    scene = load(path)
+    assert scene.environment.name == "empty"
+    assert scene.environment.morse_only["Environment"] == {"filename": str(blend)}
+    assert "sim.py:3:7: warning: env.Environment()" in capsys.readouterr().err
+
+
+def test_a_blend_environment_that_is_no_file_is_an_error(tmp_path):
     path = write(tmp_path, """
         from morse.builder import *
         robot = ATRV()
         env = Environment('/somewhere/flat.blend')
     """)
-    scene = load(path)
-    assert scene.environment.name == "empty"
-    assert scene.environment.morse_only["Environment"] == {"filename": "/somewhere/flat.blend"}
-    assert "sim.py:3:7: warning: env.Environment()" in capsys.readouterr().err
+    with pytest.raises(SceneError, match=r"sim.py:3:7: environment.name: unknown environment '/somewhere/flat'"):
+        load(path)
 
 
 # ---------------------------------------------------------------- errors: one line, the script's file:line

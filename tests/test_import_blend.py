@@ -411,7 +411,7 @@ def test_morse_root_files_take_precedence_only_while_it_is_set(tmp_path, monkeyp
     builtin = cat.get("environments", "indoors-1/boxes")
     assert Path(builtin.folder).is_relative_to(data_dir("components"))
     from morsec.frontends.load import load_scene
-    assert [o.type for o in load_scene(script, cat).objects if o.name == "chair"] == ["rolling_chair"]  # the catalogue's
+    assert [o.type for o in load_scene(script, cat).objects if o.name == "chair"] == ["RollingChair"]  # the catalogue's
 
     cache = tmp_path / "cache"
     monkeypatch.setenv("MORSE_ROOT", str(morse_root(tmp_path)))

@@ -100,7 +100,10 @@ def _check_free(root: Path, kind: str, ident: str) -> None:
         folder = Path(cls.folder).resolve()
         return folder == own[kind] or own["props"] in folder.parents
 
-    taken = [cls for cls in cat.by_kind.get(kind, {}).values() if cls.id == ident and not ours(cls)]
+    # an environment is `ident` and its objects' props `ident/<object>`; a props file is only `ident/<object>`
+    # (a catalogue prop named like the file, MORSE's `objects` table among them, is another id)
+    taken = [cls for cls in cat.by_kind.get("environments", {}).values()
+             if kind == "environments" and cls.id == ident and not ours(cls)]
     taken += [cls for cls in cat.by_kind.get("props", {}).values() if cls.id.startswith(ident + "/") and not ours(cls)]
     if taken:
         what = f"{taken[0].kind} {taken[0].id!r}"

@@ -374,6 +374,15 @@ def component_section(kind: str, cls, out_dir: Path | None, types_link: str | No
         if not link.startswith("../../"):  # only folders beside the docs (the source tree), not absolute paths
             facts.append(f"[README]({link})")
     out.append("; ".join(facts) + ".\n")
+    variants = getattr(cls, "variants", {})
+    if variants:
+        out.append("\nObjects (each a `type:` of its own, and `PassiveObject('props/<file>', '<name>')`'s name):\n\n"
+                   "| object | size x × y × z (m) | mass (kg) | moves | game properties |\n|---|---|---|---|---|\n")
+        for name, spec in variants.items():
+            size = " × ".join(_num(v) for v in spec["size"])
+            tags = ", ".join(f"`{k}: {v}`" for k, v in spec.get("properties", {}).items()) or "—"
+            moves = "yes" if spec["dynamic"] else "no"
+            out.append(f"| `{name}` | {size} | {_num(spec['mass'])} | {moves} | {tags} |\n")
     fields = cls.Properties.model_fields
     if fields:
         out.append("\nProperties (`properties:`):\n\n| property | type | default | description |\n|---|---|---|---|\n")

@@ -83,11 +83,20 @@ def _readme_body(cls) -> str:
 
 def scene_for(kind: str, cls, cat: Catalogue) -> str:
     """A small scene showing one component (a sensor or actuator on a robot that can carry it)."""
-    if kind == "environments":
-        return f"environment: {{name: {cls.id}}}\n"
+    if kind == "environments":  # seen from afar: the far clip plane beyond the world's far side
+        return f"environment: {{name: {cls.id}, camera: {{clip: [0.1, 1000.0]}}}}\n"
     if kind == "robots":
         z = 1.0 if getattr(cls.Properties(), "NoGravity", False) else 0.0
         return f"robots:\n  - {{name: subject, type: {cls.id}, translate: [0, 0, {z}]}}\n"
+    if kind == "props" and cls.variants:  # a props file: its objects in a row along x, standing on the floor
+        rows, x = [], 0.0
+        for i, (name, spec) in enumerate(cls.variants.items()):
+            lowest = min(part.centre[2] - part.size[2] / 2 for part in spec["parts"])
+            left = min(part.centre[0] - part.size[0] / 2 for part in spec["parts"])
+            right = max(part.centre[0] + part.size[0] / 2 for part in spec["parts"])
+            rows.append(f"  - {{name: subject_{i}, type: {name}, translate: [{x - left:.3f}, 0, {-lowest:.3f}]}}\n")
+            x += right - left + max(0.05, 0.15 * spec["size"][2])
+        return "objects:\n" + "".join(rows)
     if kind == "props":
         return f"objects:\n  - {{name: subject, type: {cls.id}, translate: [0, 0, 0.25]}}\n"
     carrier = next((rid for rid, rc in sorted(cat.by_kind["robots"].items())
@@ -121,7 +130,7 @@ def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None
                 model = mujoco.MjModel.from_xml_path(str(build / "scene.xml"))
                 data = mujoco.MjData(model)
                 mujoco.mj_forward(model, data)
-                camera = _camera(model, data, kind)
+                camera = _camera(model, data, kind, cls)
                 renderer = open_renderer(model, *PICTURE_SIZE)
                 try:
                     renderer.update_scene(data, camera=camera)
@@ -137,21 +146,30 @@ def render_pictures(cat: Catalogue, docs_dir: Path, only: set[str] | None = None
     return written
 
 
-def _camera(model, data, kind: str):
-    """A free camera framing the subject: its bodies' geoms (all of the scene for an environment)."""
+def _camera(model, data, kind: str, cls=None):
+    """A free camera framing the subject: its bodies' geoms (an environment: the box its `bounds` give, or
+    the 30 m around the origin)."""
     import mujoco
     camera = mujoco.MjvCamera()
     if kind == "environments":
-        camera.lookat[:] = (0, 0, 0)
-        camera.distance, camera.azimuth, camera.elevation = 28.0, 120.0, -40.0
+        bounds = getattr(cls, "bounds", None)
+        if bounds is None:
+            camera.lookat[:] = (0, 0, 0)
+            camera.distance, camera.azimuth, camera.elevation = 28.0, 120.0, -40.0
+            return camera
+        lo, hi = np.array(bounds[0], dtype=float), np.array(bounds[1], dtype=float)
+        camera.lookat[:] = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, lo[2])
+        span = float(np.linalg.norm(hi[:2] - lo[:2]))
+        camera.distance, camera.azimuth, camera.elevation = 0.85 * span + 2.0, 120.0, -50.0
         return camera
     name = "subject" if kind != "sensors" and kind != "actuators" else "carrier.subject"
     if kind in ("sensors", "actuators"):
         name = "carrier"  # the component on its carrier robot
-    root = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name)
+    roots = {int(model.body_rootid[b]) for b in range(model.nbody)
+             if (model.body(b).name == name or model.body(b).name.startswith(name + "_"))}  # subject_0 ...
     points = []
     for g in range(model.ngeom):
-        same_root = model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[root]
+        same_root = int(model.body_rootid[model.geom_bodyid[g]]) in roots
         if same_root and model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE:
             points.append(data.geom_xpos[g] + model.geom_rbound[g] * np.array([[1, 1, 1], [-1, -1, -1]]))
     pts = np.vstack(points) if points else np.zeros((1, 3))

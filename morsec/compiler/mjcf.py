@@ -115,7 +115,13 @@ def render_scene(scene, cat: Catalogue, robot_trees: dict[str, Link], loop_frequ
     env_context = {"scene": scene, "environment": scene.environment, "asset_dir": asset_dir(environment),
                    "id": environment.id}
     env_xml = render(env, _own_template(cat, environment, environment.template), **env_context)
+    terrain = environment.terrain.mjcf() if environment.terrain is not None else None
+    if environment.layout or terrain:
+        env_xml = Markup("\n").join([env_xml, render(env, "mjcf/layout.xml.j2", parts=environment.layout,
+                                                     terrain=terrain)])
     asset_xml = [_class_assets(environment, cat, env, assets, env_context)]
+    if terrain:
+        asset_xml.append(render(env, "mjcf/layout_assets.xml.j2", terrain=terrain))
     for cls in _used_classes(scene, cat):
         context: dict[str, Any] = {"asset_dir": asset_dir(cls), "id": cls.id}
         if cls.kind == "prop":  # a prop scaled by its objects' sizes declares its meshes at each (mesh scale)
@@ -491,9 +497,27 @@ def _move_bodies(root: ET.Element, mounts: dict[str, tuple[str, str | None]]) ->
 def _object(obj, cat: Catalogue, env) -> str:
     cls = cat.get("props", obj.type)
     color = list(obj.color) + [1.0] if len(obj.color) == 3 else list(obj.color)
+    variant = cat.variant(obj.type)
     fragment = render(env, _own_template(cat, cls, cls.template), name=obj.name, id=cls.id, size=obj.size,
                       half=[s / 2 for s in obj.size], color=color, mass=obj.mass, dynamic=obj.dynamic,
-                      properties=obj.properties)
+                      properties=obj.properties, parts=_scaled_parts(variant, obj.size, obj.mass))
     return render(env, "mjcf/object.xml.j2", obj={
         "name": obj.name, "pos": obj.translate, "quat": euler_to_quat(*obj.rotate), "dynamic": obj.dynamic,
         "fragment": fragment, "site": bool(obj.locks and obj.dynamic)})
+
+
+def _scaled_parts(variant: dict | None, size, mass: float) -> list[dict]:
+    """An object of a props file: its parts (morsec.kits.layout.PropPart) scaled from the object's own size to
+    the entry's `size` about its origin, each with its share of the mass (by volume) and MuJoCo's geom size."""
+    if variant is None:
+        return []
+    scale = [s / d for s, d in zip(size, variant["size"])]
+    parts = variant["parts"]
+    volumes = [p.size[0] * p.size[1] * p.size[2] for p in parts]
+    out = []
+    for piece, volume in zip(parts, volumes):
+        full = [v * k for v, k in zip(piece.size, scale)]
+        geom_size = [full[0] / 2, full[2] / 2] if piece.shape == "cylinder" else [v / 2 for v in full]
+        out.append({"name": piece.name, "shape": piece.shape, "pos": [v * k for v, k in zip(piece.centre, scale)],
+                    "size": geom_size, "rgba": piece.rgba, "mass": mass * volume / sum(volumes)})
+    return out

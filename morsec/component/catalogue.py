@@ -59,6 +59,7 @@ class Catalogue:
     roots: tuple[Path, ...]
     by_kind: dict[str, dict[str, type[Component]]] = field(default_factory=dict)
     aliases: dict[str, dict[str, str]] = field(default_factory=dict)  # kind -> builder name -> id
+    variant_of: dict[str, tuple[str, str]] = field(default_factory=dict)  # prop object name -> (prop id, name)
     _devices: dict | None = field(default=None, repr=False)
     morse: MorseData | None = field(default=None, repr=False)  # $MORSE_ROOT's environments and props
 
@@ -112,6 +113,20 @@ class Catalogue:
             raise MorsecError(f"unknown {label} type {name!r}{did_you_mean(name, self.names(kind))}")
         return self.by_kind[kind][resolved]
 
+    def variant(self, name: str) -> dict | None:
+        """The entry of `Prop.variants` that prop type `name` names (an object of a props file), or None."""
+        found = self.variant_of.get(name)
+        return self.by_kind["props"][found[0]].variants[found[1]] if found else None
+
+    def prop_defaults(self, name: str) -> dict:
+        """What an object of prop type `name` is unless its entry says otherwise: the named object's values
+        (its parts left out) or the prop's `defaults`."""
+        spec = self.variant(name)
+        if spec is not None:
+            return {k: v for k, v in spec.items() if k != "parts"}
+        pid = self.resolve("props", name)
+        return self.by_kind["props"][pid].defaults if pid else {}
+
     def devices(self) -> dict[str, type[Device]]:
         """Sensors and actuators by id (a catalogue does not change once loaded: computed once)."""
         if self._devices is None:
@@ -158,6 +173,13 @@ def _load(roots: tuple[Path, ...], morse: Path | None = None) -> Catalogue:
                 cat.by_kind[kind][cid] = cls
                 alias = cls.builder_name or camel_case(cid)
                 cat.aliases.setdefault(kind, {})[alias] = cid
+                for name in getattr(cls, "variants", {}):
+                    taken = cat.variant_of.get(name) or (None, cat.aliases[kind].get(name))
+                    if taken[1] is not None or name in cat.by_kind[kind]:
+                        raise MorsecError(f"{folder / 'component.py'}: object {name!r} is already a prop type "
+                                          f"({taken[0] or taken[1] or name})")
+                    cat.aliases[kind][name] = cid
+                    cat.variant_of[name] = (cid, name)
     return cat
 
 

@@ -31,6 +31,7 @@ from morsec.component.properties import ComponentProperties, RobotProperties
 from morsec.component.services import ServiceInfo, service
 from morsec.errors import did_you_mean
 from morsec.kits.geometry import matrix_to_euler
+from morsec.kits.layout import Part, Terrain
 from morsec.modifiers.base import Modifier
 
 
@@ -324,6 +325,13 @@ class Environment(Component):
     # color, properties ...): MORSE's named .blend objects with their game properties, which sensors find
     # (the semantic camera's RedBox); a scene object of the same name replaces one
     objects: ClassVar[tuple[dict, ...]] = ()
+    # its static shapes (walls, furniture, buildings, trees) and its uneven ground, as data
+    # (morsec.kits.layout: block, column, ball, blob, Terrain), written by the compiler after environment.xml.j2
+    layout: ClassVar[tuple[Part, ...]] = ()
+    terrain: ClassVar[Terrain | None] = None
+    # the box the world fills, ((xmin, ymin, zmin), (xmax, ymax, zmax)) m, as its README states it (the
+    # gallery frames it); None: unbounded (an open plane)
+    bounds: ClassVar[tuple[tuple[float, float, float], tuple[float, float, float]] | None] = None
 
 
 class Prop(Component):
@@ -335,6 +343,11 @@ class Prop(Component):
     # properties), e.g. a MORSE .blend object's: {"size": [0.04, 0.12, 0.2], "dynamic": True}; properties
     # the entry gives are added to the prop's
     defaults: ClassVar[dict] = {}
+    # a prop kind holding several objects, as a MORSE props file does (props/objects: RollingChair,
+    # BlackVideotape, ...): {object name: its defaults (size, color, dynamic, mass, properties) and its
+    # "parts" (morsec.kits.layout.PropPart, at that size, around the object's origin)}. Each name is a `type:`
+    # of its own (and PassiveObject's name); the kind's template draws the named object's parts
+    variants: ClassVar[dict[str, dict]] = {}
 
 
 KINDS: dict[str, type[Component]] = {

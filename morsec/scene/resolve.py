@@ -69,8 +69,8 @@ def add_prop_defaults(data: Any, cat: Catalogue) -> Any:
         return data
     objects, changed = [], False
     for obj in data["objects"]:
-        pid = cat.resolve("props", obj["type"]) if isinstance(obj, dict) and isinstance(obj.get("type"), str) else None
-        defaults = cat.get("props", pid).defaults if pid else {}
+        ptype = obj.get("type") if isinstance(obj, dict) else None
+        defaults = cat.prop_defaults(ptype) if isinstance(ptype, str) else {}
         if defaults:
             own = copy.deepcopy(defaults)
             if isinstance(obj.get("properties"), dict):
@@ -89,7 +89,8 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     for robot in scene.robots:
         robot.type = cat.resolve("robots", robot.type)
     for obj in scene.objects:
-        obj.type = cat.resolve("props", obj.type)
+        if cat.variant(obj.type) is None:  # an object of a props file keeps its name: it says which
+            obj.type = cat.resolve("props", obj.type)
 
     top = list(scene.robots) + list(scene.objects)
     paths = [("robots", i) for i in range(len(scene.robots))] + [("objects", i) for i in range(len(scene.objects))]

@@ -1,4 +1,4 @@
-"""MORSE's props/objects props (black_videotape, white_videotape, rolling_chair): their own size, colour,
+"""MORSE's props/objects props (BlackVideotape, WhiteVideotape, RollingChair): their own size, colour,
 mass and origin, as a scene entry's defaults; MORSE's PassiveObject(file, name) in builder scripts, for a
 catalogue prop or an object taken out of a catalogue environment, and its errors."""
 
@@ -16,8 +16,8 @@ def test_props_have_their_own_size_mass_and_origin_on_the_floor(tmp_path):
 environment: {name: empty, time: {strategy: fixed_step, relative: true}}
 objects:
   - {name: tape, type: BlackVideotape, translate: [1.0, 0.0, 0.0]}
-  - {name: tape2, type: white_videotape, translate: [1.0, 1.0, 0.0], properties: {Graspable: true}}
-  - {name: big, type: black_videotape, translate: [1.0, -1.0, 0.0], size: [0.08, 0.24, 0.4], color: [1, 0, 0]}
+  - {name: tape2, type: WhiteVideotape, translate: [1.0, 1.0, 0.0], properties: {Graspable: true}}
+  - {name: big, type: BlackVideotape, translate: [1.0, -1.0, 0.0], size: [0.08, 0.24, 0.4], color: [1, 0, 0]}
   - {name: chair, type: RollingChair, translate: [0.0, 3.0, 0.01]}
 """
     with simulate(text, tmp_path) as h:
@@ -51,8 +51,8 @@ def chair_and_tapes():
 
 def test_passive_object_takes_a_catalogue_prop_or_an_environment_object():
     objects = {o["name"]: o for o in record_call(chair_and_tapes).data["objects"]}
-    assert objects["tape"] == {"name": "tape", "type": "black_videotape", "translate": [5.0, 5.0, 0.0]}
-    assert objects["chair"]["type"] == "rolling_chair"
+    assert objects["tape"] == {"name": "tape", "type": "BlackVideotape", "translate": [5.0, 5.0, 0.0]}
+    assert objects["chair"]["type"] == "RollingChair"
     # MORSE's GreenBox of boxes.blend, placed at the origin then moved (MORSE resets the pose)
     assert objects["block"] == {"name": "block", "type": "box", "size": [1.0, 1.0, 1.8],
                                 "color": [0.0, 0.952, 0.019], "properties": {"Object": "GreenBox"},

@@ -529,8 +529,8 @@ class AbstractComponent:
         for kind in self._catalogue_kinds():
             for candidate in candidates:
                 found = cat.resolve(kind, candidate)
-                if found:
-                    return found
+                if found:  # an object of a props file is named by its own name: it says which
+                    return candidate if kind == "props" and cat.variant(candidate) is not None else found
         return None
 
     def _emit_type(self) -> str | None:
@@ -993,12 +993,21 @@ class PassiveObject(_Object):
                 self._type_name = found
                 self._own_size = cat.get("props", found).defaults.get("size")
                 return
+        self._not_a_prop(str(filename), prefix, what)
         for candidate in (prefix, filename):
             if candidate:
                 found = self._lookup(candidate)
                 if found:
+                    held = self._session.catalogue.get("props", found).variants
+                    if held and found not in held and prefix:
+                        raise self._session.error(f"{what}: no catalogue prop by that name"
+                                                  f"{did_you_mean(str(prefix), held)} (the objects of "
+                                                  f"{found!r}: {', '.join(held)})")
+                    if held and found not in held:
+                        raise self._session.error(f"{what}: {found!r} holds several objects: name one "
+                                                  f"({', '.join(held)})")
                     self._type_name = found
-                    self._own_size = self._session.catalogue.get("props", found).defaults.get("size")
+                    self._own_size = self._session.catalogue.prop_defaults(found).get("size")
                     return
         searched = asset_search_path(self._session.script)
         found_file = find_asset(str(filename), searched)
@@ -1013,6 +1022,12 @@ class PassiveObject(_Object):
         raise self._session.error(f"{what}: no catalogue prop by that name{did_you_mean(wanted, cat.names('props'))} "
                                   f"(props: {props}) and no asset file found; searched {shown} (add folders with "
                                   "MORSE_RESOURCE_PATH)")
+
+    def _not_a_prop(self, filename: str, prefix, what: str) -> None:
+        """MORSE's props/basics.blend holds its viewer's camera and head-up display, not objects to place."""
+        if filename.replace("\\", "/").removesuffix(".blend").endswith("props/basics"):
+            raise self._session.error(f"{what}: MORSE's props/basics holds its viewer's camera and head-up display "
+                                      "(CameraFP, Screen, HUD_plane), not objects: morsec's viewers have their own")
 
     def _from_environment(self, filename: str, prefix, keep_pose: bool, what: str) -> bool:
         """`environments/<id>`: the object `prefix` of that catalogue environment (its `objects`)."""

@@ -26,6 +26,22 @@ _STRATEGIES = {0: "best_effort", 1: "fixed_step", "BestEffort": "best_effort", "
                "best_effort": "best_effort", "fixed_step": "fixed_step"}
 
 
+def morse_environment(filename: str, ids: list[str]) -> str | None:
+    """The catalogue environment a MORSE script names, as MORSE's Environment() takes it: its path under
+    MORSE's data/environments, with or without `.blend` and the `environments/` folder, or a path to MORSE's
+    own file (`/usr/share/morse/data/environments/indoors-1/indoor-1.blend`); or only the file's name when one
+    catalogue environment has it (`indoor-1`, `tum_kitchen.blend`). None: no catalogue environment."""
+    text = filename.replace("\\", "/").removesuffix(".blend")
+    if "environments/" in text:
+        text = text.rsplit("environments/", 1)[1]
+    if text in ids:
+        return text
+    if "/" in text:
+        return None
+    named = [eid for eid in ids if eid.rsplit("/", 1)[-1] == text]
+    return named[0] if len(named) == 1 else None
+
+
 class Environment(AbstractComponent):
     """Environment(filename, fastmode=False, ...): must be created once, after the robots."""
 
@@ -59,16 +75,18 @@ class Environment(AbstractComponent):
 
     def _set_world(self, filename) -> None:
         text = str(filename)
-        cat = self._session.catalogue
-        if text.endswith(".blend") or os.path.isabs(text):
-            stem = text[:-6] if text.endswith(".blend") else text
-            if stem in cat.ids("environments"):
-                self._put("name", value=stem)
-                return
-            self._session.morse_only(None, "Environment", {"filename": text},
-                                     "loads a Blender file; the scene uses the 'empty' environment instead")
+        found = morse_environment(text, self._session.catalogue.ids("environments"))
+        if found is not None:
+            self._put("name", value=found)
             return
-        self._put("name", value=text)
+        if text.endswith(".blend") or os.path.isabs(text):
+            from morsec.frontends.builder.components import asset_search_path, find_asset
+            if find_asset(text, asset_search_path(self._session.script)) is not None:
+                self._session.morse_only(None, "Environment", {"filename": text},
+                                         "loads a Blender file; the scene uses the 'empty' environment instead")
+                return
+        # neither a catalogue environment nor a file: the scene's validation says so, with "did you mean"
+        self._put("name", value=text.replace("\\", "/").removesuffix(".blend"))
 
     def _default_label(self) -> str:
         return "environment"
