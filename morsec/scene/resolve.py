@@ -129,7 +129,11 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
             _add_stream(comp, cls, middleware)
             _add_service(comp, middleware)
         if default_interface:
-            if not comp.streams:
+            # a component the middleware has no message for is left out (ROS: a thermometer), as named ones
+            # are refused below
+            if not comp.streams and not middleware_class(default_interface).check_stream(StreamRequest(
+                    comp.name or comp.type, cls.direction, {}, type_lineage(cls),
+                    comp.properties.model_dump(mode="json"))):
                 _add_stream(comp, cls, default_interface)
             if not comp.services:
                 _add_service(comp, default_interface)

@@ -60,10 +60,9 @@ def require_ros(what: str = "the ROS middleware") -> None:
     """Make ROS 1's modules importable, or raise RosMissing saying how to install them."""
     missing = missing_modules()
     if missing:
-        packages = " ".join(sorted({MODULES[name] for name in missing}))
-        raise RosMissing(f"{what} needs ROS 1, whose Python modules {', '.join(missing)} are not found (looked in "
-                         f"this Python's path and {ros_folder()}): install them with `sudo {INSTALL}` "
-                         f"(missing: {packages}); see docs/ros.md")
+        shown = ", ".join(missing[:3]) + (" ..." if len(missing) > 3 else "")
+        raise RosMissing(f"{what} needs ROS 1, which is not installed ({shown} not found in this Python's path "
+                         f"nor in {ros_folder()}): install it with `sudo {INSTALL}` (docs/ros.md)")
 
 
 def ros_problem(what: str = "the ROS middleware") -> str | None:

@@ -4,6 +4,7 @@ serialiser, frames) of each stream, the overlays it has; at run time it starts t
 
 from __future__ import annotations
 
+import importlib.util
 from typing import Any
 
 from pydantic import BaseModel, Field
@@ -12,11 +13,13 @@ from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.ros.available import require_ros, ros_problem
 from morsec.middleware.ros.serialisers import MORSE, default_topic, serialiser_for
 
-# MORSE's overlays morsec has: {MORSE's class path: (morsec's class, the component types it adapts)}
+# MORSE's overlays morsec has: {MORSE's class path: (morsec's class, the component types it adapts, the message
+# package it needs beyond the middleware's own and its Debian package)}
 OVERLAYS = {
     MORSE + "overlays.armatures.ArmatureController": ("morsec.middleware.ros.overlays:ArmatureController",
-                                                       ("armature",)),
-    MORSE + "overlays.waypoints.WayPoint": ("morsec.middleware.ros.overlays:WayPoint", ("waypoint",)),
+                                                       ("armature",), None),
+    MORSE + "overlays.waypoints.WayPoint": ("morsec.middleware.ros.overlays:WayPoint", ("waypoint",),
+                                            ("move_base_msgs", "python3-move-base-msgs")),
 }
 # what a laser scan message needs of its sensor's properties
 LASER_GEOMETRY = ("laser_range", "scan_window", "resolution")
@@ -51,10 +54,13 @@ class Ros(Middleware):
             from morsec.errors import did_you_mean
             raise ValueError(f"the ros middleware has no overlay {overlay!r}{did_you_mean(overlay, OVERLAYS)} "
                              f"(it has: {', '.join(sorted(OVERLAYS))})")
-        target, adapts = OVERLAYS[overlay]
+        target, adapts, needs = OVERLAYS[overlay]
         if not set(adapts) & set(types):
             raise ValueError(f"overlay {overlay} adapts {' or '.join(adapts)} components, not "
                              f"{types[0] if types else 'this one'}")
+        if needs and ros_problem() is None and importlib.util.find_spec(needs[0]) is None:
+            raise ValueError(f"overlay {overlay} needs ROS's {needs[0]}: install it with `sudo apt-get install "
+                             f"{needs[1]}`")
         return target
 
     @classmethod

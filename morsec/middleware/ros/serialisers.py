@@ -72,7 +72,7 @@ def serialiser_for(types: tuple[str, ...], direction: str, named: str | None) ->
         if key is None:
             from morsec.errors import did_you_mean
             raise ValueError(f"no ROS serialiser {named!r}{did_you_mean(named, [*_BY_MORSE, *SERIALISERS])} "
-                             f"(morsec's: {', '.join(sorted(_BY_MORSE))})")
+                             "(docs/ros.md lists them)")
         chosen = SERIALISERS[key]
         if chosen.direction != direction:
             raise ValueError(f"ROS serialiser {named!r} {'publishes' if chosen.direction == 'OUT' else 'reads'} "
