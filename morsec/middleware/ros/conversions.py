@@ -24,7 +24,17 @@ from geometry_msgs.msg import (
 )
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import CameraInfo, Image, Imu, JointState, LaserScan, NavSatFix, NavSatStatus
+from sensor_msgs.msg import (
+    CameraInfo,
+    Image,
+    Imu,
+    JointState,
+    LaserScan,
+    NavSatFix,
+    NavSatStatus,
+    PointCloud2,
+    PointField,
+)
 from std_msgs.msg import Header
 from tf2_msgs.msg import TFMessage
 from trajectory_msgs.msg import JointTrajectoryPoint
@@ -246,6 +256,21 @@ class ImageOut(RosOut):
                                      D=[0.0] * 5, K=k, R=[1.0, 0, 0, 0, 1.0, 0, 0, 0, 1.0], P=p))
 
 
+class PointCloud2Out(RosOut):
+    """sensor_msgs/PointCloud2 of a depth camera's points: x, y, z float32 in the camera's optical frame."""
+
+    message = PointCloud2
+
+    def convert(self, data):
+        points = data["points"]
+        raw = base64.b64decode(points) if isinstance(points, str) else bytes(memoryview(points))
+        count = len(raw) // 12
+        fields = [PointField(name=n, offset=4 * i, datatype=PointField.FLOAT32, count=1)
+                  for i, n in enumerate("xyz")]
+        return PointCloud2(header=self.header(data), height=1, width=count, fields=fields, is_bigendian=False,
+                           point_step=12, row_step=12 * count, data=raw, is_dense=False)
+
+
 # ---- actuators
 
 class RosIn:
@@ -330,7 +355,8 @@ STREAMS: dict[str, type] = {
     "pose_tf": PoseTfOut, "odometry": OdometryOut, "joint_state": JointStateOut,
     "joint_trajectory_controller_state": JointTrajectoryControllerStateOut, "laser_scan": LaserScanOut,
     "imu": ImuOut, "nav_sat_fix": NavSatFixOut, "twist_stamped": TwistStampedOut, "clock": ClockOut,
-    "image": ImageOut, "twist": TwistIn, "twist_xyw": TwistXywIn, "pose_in": PoseIn, "point_in": PointIn,
+    "image": ImageOut, "point_cloud2": PointCloud2Out,
+    "twist": TwistIn, "twist_xyw": TwistXywIn, "pose_in": PoseIn, "point_in": PointIn,
     "joint_state_in": JointStateIn,
 }
 

@@ -109,7 +109,11 @@ class RosNode:
     def open_stream(self, component: str, direction: str, endpoint: dict[str, Any]):
         from morsec.middleware.ros.conversions import stream_class
         stream = stream_class(endpoint["serialiser"])(self, component, endpoint)
-        self.rows.append((component, direction, f"{endpoint['topic']} ({endpoint['message']})"))
+        if endpoint["message"] == "tf2_msgs/TFMessage":  # a transform, on /tf whatever the topic
+            where = f"/tf ({endpoint['frame_id']} -> {endpoint.get('child_frame_id')})"
+        else:
+            where = f"{endpoint['topic']} ({endpoint['message']})"
+        self.rows.append((component, direction, where))
         return stream
 
     def open_overlay(self, component: str, instance: Any, overlay: str, params: dict[str, Any]) -> None:

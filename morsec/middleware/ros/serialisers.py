@@ -51,6 +51,8 @@ SERIALISERS = {s.name: s for s in (
                ("velocity.TwistStampedPublisher",)),
     Serialiser("clock", "OUT", "rosgraph_msgs/Clock", ("clock",), ("clock.ClockPublisher",)),
     Serialiser("image", "OUT", "sensor_msgs/Image", ("video_camera",), ("video_camera.VideoCameraPublisher",)),
+    Serialiser("point_cloud2", "OUT", "sensor_msgs/PointCloud2", ("depth_camera",),
+               ("depth_camera.DepthCameraPublisher", "point_cloud2.PointCloud2Publisher")),
     Serialiser("twist", "IN", "geometry_msgs/Twist", ("motion_vw", "motion_vw_diff"),
                ("motion_vw.TwistReader", "read_vw_twist.TwistReader", "read_twist.TwistReader")),
     Serialiser("twist_xyw", "IN", "geometry_msgs/Twist", ("motion_xyw",),
