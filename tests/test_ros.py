@@ -296,3 +296,31 @@ def test_a_default_interface_on_ros_streams_the_components_ros_has_messages_for(
     assert [(s["component"], s["direction"], s["topic"], s["message"]) for s in streams] == [
         ("atrv.motion_vw", "IN", "/atrv/motion_vw", "geometry_msgs/Twist"),
         ("atrv.pose", "OUT", "/atrv/pose", "geometry_msgs/PoseStamped")]
+
+
+def test_a_static_tf_stream_records_where_the_component_is_on_its_robot(tmp_path):
+    """StaticTFPublisher's transform is the component's place on its robot, a nested one's composed with its
+    parent's: a camera 0.1 m ahead on a pan-tilt unit turned 90 degrees left, 1 m up the robot."""
+    import json
+    import math
+    source = tmp_path / "static.yaml"
+    source.write_text(textwrap.dedent("""
+        robots:
+          - type: atrv
+            name: robot
+            components:
+              - type: ptu
+                name: ptu
+                translate: [0, 0, 1]
+                rotate: [0, 0, 1.5707963267948966]
+                components:
+                  - type: pose
+                    name: eye
+                    translate: [0.1, 0, 0]
+                    streams: [{middleware: ros, method: morse.middleware.ros.static_tf.StaticTF2Publisher}]
+    """), encoding="utf-8")
+    stream = json.loads((build_scene(source, tmp_path / "out") / "middleware.json").read_text())["streams"][0]
+    (x, y, z), (roll, pitch, yaw) = stream["placement"]
+    assert (stream["parent_frame_id"], stream["frame_id"]) == ("base_link", "/robot/ptu/eye")
+    assert (x, y, z) == pytest.approx((0.0, 0.1, 1.0)) and yaw == pytest.approx(math.pi / 2)
+    assert (roll, pitch) == pytest.approx((0.0, 0.0))

@@ -29,6 +29,8 @@ class StreamRequest:
     options: dict[str, Any]
     types: tuple[str, ...] = ()  # the component's catalogue id, then those of the types it derives from
     properties: dict[str, Any] = field(default_factory=dict)  # its resolved properties
+    # where it is on its robot, as the scene placed it (nesting composed): ([x, y, z] m, [roll, pitch, yaw] rad)
+    placement: tuple[list[float], list[float]] = ([0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
 
 
 @dataclass

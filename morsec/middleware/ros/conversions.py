@@ -127,6 +127,48 @@ class PoseTfOut(RosOut):
         self.transform(data, self.frame_id, self.child_frame_id or "/base_link")
 
 
+class StaticTfOut(RosOut):
+    """MORSE's static_tf.StaticTFPublisher: the component's place on its robot, parent_frame_id (base_link) ->
+    frame_id, on /tf once a simulated second, stamped a second ahead (as a static_transform_publisher)."""
+
+    sends_tf = True
+
+    def __init__(self, node, component, endpoint):
+        super().__init__(node, component, endpoint)
+        self.last = -math.inf
+
+    def transform_message(self, data) -> TFMessage:
+        (x, y, z), (roll, pitch, yaw) = self.endpoint["placement"]
+        t = TransformStamped(header=Header(stamp=rospy.Time.from_sec(float(data["timestamp"]) + 1.0),
+                                           frame_id=self.endpoint["parent_frame_id"]),
+                             child_frame_id=self.child_frame_id or self.frame_id)
+        t.transform.translation = Vector3(x, y, z)
+        t.transform.rotation = orientation({"roll": roll, "pitch": pitch, "yaw": yaw})
+        return TFMessage(transforms=[t])
+
+    def send(self, data):
+        if float(data["timestamp"]) > self.last + 1.0:
+            self.last = float(data["timestamp"])
+            self.node.tf.publish(self.transform_message(data))
+
+
+class StaticTf2Out(StaticTfOut):
+    """MORSE's static_tf.StaticTF2Publisher: the same transform, once, latched on /tf_static (tf2's way)."""
+
+    def __init__(self, node, component, endpoint):
+        super().__init__(node, component, endpoint)
+        self.static = node.publisher("/tf_static", TFMessage, latch=True)
+        self.sent = False
+
+    @property
+    def listening(self) -> bool:
+        return not self.sent  # published once whoever listens: the latch keeps it for those who come later
+
+    def send(self, data):
+        self.static.publish(self.transform_message(data))
+        self.sent = True
+
+
 class OdometryOut(RosOut):
     """nav_msgs/Odometry in frame_id (/odom) of child_frame_id (/base_footprint), and that transform on /tf."""
 
@@ -352,7 +394,8 @@ class JointStateIn(RosIn):
 
 STREAMS: dict[str, type] = {
     "pose_stamped": PoseStampedOut, "pose": PoseOut, "pose_with_covariance": PoseWithCovarianceOut,
-    "pose_tf": PoseTfOut, "odometry": OdometryOut, "joint_state": JointStateOut,
+    "pose_tf": PoseTfOut, "static_tf": StaticTfOut, "static_tf2": StaticTf2Out, "odometry": OdometryOut,
+    "joint_state": JointStateOut,
     "joint_trajectory_controller_state": JointTrajectoryControllerStateOut, "laser_scan": LaserScanOut,
     "imu": ImuOut, "nav_sat_fix": NavSatFixOut, "twist_stamped": TwistStampedOut, "clock": ClockOut,
     "image": ImageOut, "point_cloud2": PointCloud2Out,

@@ -34,6 +34,9 @@ class Ros(Middleware):
         child_frame_id: str | None = Field(
             None, description="ros: the moving frame of an odometry or tf stream (default MORSE's: /base_footprint, "
             "/base_link)")
+        parent_frame_id: str | None = Field(
+            None, description="ros: the robot's frame a static tf stream (StaticTFPublisher) places the component in "
+            "(default base_link)")
 
     # ---- build time
     @classmethod
@@ -78,6 +81,9 @@ class Ros(Middleware):
             child = stream.options.get("child_frame_id") or serialiser.child_frame_id
             if child:
                 endpoint["child_frame_id"] = child
+            if serialiser.name in ("static_tf", "static_tf2"):  # the component on its robot, as placed
+                endpoint["parent_frame_id"] = stream.options.get("parent_frame_id") or "base_link"
+                endpoint["placement"] = [list(part) for part in stream.placement]
             if serialiser.name == "laser_scan":
                 endpoint["geometry"] = {k: stream.properties[k] for k in LASER_GEOMETRY if k in stream.properties}
             endpoints.append(endpoint)

@@ -96,8 +96,8 @@ class RosNode:
             self._tf = self.publisher("/tf", TFMessage)
         return self._tf
 
-    def publisher(self, topic: str, message_class) -> Publisher:
-        pub = Publisher(topic, message_class)
+    def publisher(self, topic: str, message_class, latch: bool = False) -> Publisher:
+        pub = Publisher(topic, message_class, latch)
         self.closables.append(pub)
         return pub
 
@@ -153,10 +153,11 @@ class Publisher:
     leaves far behind). A subscriber that stops reading is dropped after SEND_TIMEOUT, never stalls the loop
     for longer; it may subscribe again."""
 
-    def __init__(self, topic: str, message_class):
+    def __init__(self, topic: str, message_class, latch: bool = False):
         with warnings.catch_warnings():  # rospy warns that queue_size=None publishes synchronously: it is meant
             warnings.simplefilter("ignore")
-            self.pub = rospy.Publisher(topic, message_class, queue_size=None)
+            self.pub = rospy.Publisher(topic, message_class, queue_size=None, latch=latch)
+        self.latch = latch  # a latched message is kept for subscribers to come: published whoever listens
         self.connections = 0
 
     @property
@@ -171,7 +172,7 @@ class Publisher:
         return count > 0
 
     def publish(self, message) -> None:
-        if self.listening:
+        if self.listening or self.latch:
             self.pub.publish(message)
 
     def unregister(self) -> None:

@@ -101,7 +101,8 @@ class ActionOverlay:
             self.node.cancel(self, request)
 
     def _cancel(self, handle) -> None:
-        if self.active is not None and self.active[0] is handle:
+        # actionlib hands a new handle object for the same goal to the cancel callback: goals are told by id
+        if self.active is not None and self.active[0] is not None and _goal_id(self.active[0]) == _goal_id(handle):
             self._preempt()
         else:
             try:
@@ -121,6 +122,10 @@ class ActionOverlay:
 
     def close(self) -> None:
         self.servers = []
+
+
+def _goal_id(handle) -> str:
+    return handle.get_goal_id().id
 
 
 class ArmatureController(ActionOverlay):
