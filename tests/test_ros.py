@@ -64,6 +64,13 @@ def simulate(ros_master, tmp_path):
         sim.stop()
 
 
+def messages_folder() -> str:
+    """Where morsec generated control_msgs (asked in a child process: this one's sys.path stays as it is)."""
+    return subprocess.run([sys.executable, "-c", "from morsec.middleware.ros.messages import ensure_messages; "
+                           "print(ensure_messages())"], capture_output=True, text=True, timeout=120,
+                          check=True).stdout.strip()
+
+
 def echo(topic: str, count: int = 1, timeout: float = 20) -> list[dict]:
     """`rostopic echo -n COUNT TOPIC`: the messages, as rostopic prints them (YAML)."""
     out = subprocess.run(["rostopic", "echo", "-n", str(count), topic], capture_output=True, text=True,
@@ -246,7 +253,6 @@ def test_an_armature_overlay_serves_ros_controller_actions(simulate, tmp_path):
     """MORSE's ArmatureController: a FollowJointTrajectory goal (actionlib, control_msgs) moves the arm and
     succeeds; the joint state then reads the goal exactly (an armature at rest holds its joints); a goal
     naming a joint the arm does not have is rejected."""
-    from morsec.middleware.ros.messages import ensure_messages
     source = tmp_path / "arm.py"
     source.write_text(textwrap.dedent("""
         from morse.builder import *
@@ -279,12 +285,22 @@ def test_an_armature_overlay_serves_ros_controller_actions(simulate, tmp_path):
         goal.trajectory.joint_names = ['elbow']
         print(client.send_goal_and_wait(goal, rospy.Duration(20)))
     """)], capture_output=True, text=True,
-        timeout=90, env=dict(os.environ, PYTHONPATH=str(ensure_messages())))
+        timeout=90, env=dict(os.environ, PYTHONPATH=messages_folder()))
     assert client.returncode == 0, client.stderr
     succeeded, positions, rejected = client.stdout.strip().splitlines()
     assert succeeded == "3"  # actionlib's GoalStatus.SUCCEEDED
     assert [float(v) for v in positions.split()] == [0.5, -0.4]
     assert rejected == "5"  # REJECTED
+
+
+def test_building_a_ros_scene_leaves_this_python_as_it_was(tmp_path):
+    """A build only asks whether ROS is there: Debian's folder is not added to the compiling process's path
+    (what else that process imports, and the build cache's key, stay the same)."""
+    before = list(sys.path)
+    source = tmp_path / "rover.yaml"
+    source.write_text(ROVER_YAML, encoding="utf-8")
+    build_scene(source, tmp_path / "out")
+    assert sys.path == before
 
 
 def test_a_default_interface_on_ros_streams_the_components_ros_has_messages_for(tmp_path):

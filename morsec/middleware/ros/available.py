@@ -11,6 +11,7 @@ Standard library only: the compiler asks this at build time without importing ro
 
 from __future__ import annotations
 
+import importlib.machinery
 import importlib.util
 import os
 import sys
@@ -60,18 +61,27 @@ def require_ros(what: str = "the ROS middleware") -> None:
     """Make ROS 1's modules importable, or raise RosMissing saying how to install them."""
     missing = missing_modules()
     if missing:
-        shown = ", ".join(missing[:3]) + (" ..." if len(missing) > 3 else "")
-        raise RosMissing(f"{what} needs ROS 1, which is not installed ({shown} not found in this Python's path "
-                         f"nor in {ros_folder()}): install it with `sudo {INSTALL}` (docs/ros.md)")
+        _missing_error(what, missing)
 
 
 def ros_problem(what: str = "the ROS middleware") -> str | None:
-    """require_ros's message, or None when ROS is there."""
+    """require_ros's message, or None when ROS is there; sys.path is left as it is (a build only asks)."""
+    folder = ros_folder()
+    missing = [name for name in MODULES if not _importable(name)
+               and not (os.path.isdir(folder) and importlib.machinery.PathFinder.find_spec(name, [folder]))]
+    if not missing:
+        return None
     try:
-        require_ros(what)
+        _missing_error(what, missing)
     except RosMissing as err:
         return err.message
     return None
+
+
+def _missing_error(what: str, missing: list[str]) -> None:
+    shown = ", ".join(missing[:3]) + (" ..." if len(missing) > 3 else "")
+    raise RosMissing(f"{what} needs ROS 1, which is not installed ({shown} not found in this Python's path "
+                     f"nor in {ros_folder()}): install it with `sudo {INSTALL}` (docs/ros.md)")
 
 
 def _importable(name: str) -> bool:

@@ -4,13 +4,15 @@ serialiser, frames) of each stream, the overlays it has; at run time it starts t
 
 from __future__ import annotations
 
+import importlib.machinery
 import importlib.util
+import os
 from typing import Any
 
 from pydantic import BaseModel, Field
 
 from morsec.middleware.base import Middleware, StreamRequest
-from morsec.middleware.ros.available import require_ros, ros_problem
+from morsec.middleware.ros.available import require_ros, ros_folder, ros_problem
 from morsec.middleware.ros.serialisers import MORSE, default_topic, serialiser_for
 
 # MORSE's overlays morsec has: {MORSE's class path: (morsec's class, the component types it adapts, the message
@@ -23,6 +25,13 @@ OVERLAYS = {
 }
 # what a laser scan message needs of its sensor's properties
 LASER_GEOMETRY = ("laser_range", "scan_window", "resolution")
+
+
+def _findable(module: str) -> bool:
+    """Importable as things are, or from ROS's folder (which only a simulation adds to sys.path)."""
+    folder = ros_folder()
+    return (importlib.util.find_spec(module) is not None
+            or (os.path.isdir(folder) and importlib.machinery.PathFinder.find_spec(module, [folder]) is not None))
 
 
 class Ros(Middleware):
@@ -61,7 +70,7 @@ class Ros(Middleware):
         if not set(adapts) & set(types):
             raise ValueError(f"overlay {overlay} adapts {' or '.join(adapts)} components, not "
                              f"{types[0] if types else 'this one'}")
-        if needs and ros_problem() is None and importlib.util.find_spec(needs[0]) is None:
+        if needs and ros_problem() is None and not _findable(needs[0]):
             raise ValueError(f"overlay {overlay} needs ROS's {needs[0]}: install it with `sudo apt-get install "
                              f"{needs[1]}`")
         return target
