@@ -441,9 +441,9 @@ ERRORS = {
         from morse.builder import *
         robot = ATRV()
         motion = MotionVW()
-        motion.add_stream('ros')
+        motion.add_stream('yarp')
         robot.append(motion)
-        """, ("sim.py:4:1: robots[0].components[0].streams[0]", "'ros'", "'socket'")),
+        """, ("sim.py:4:1: robots[0].components[0].streams[0]", "'yarp'", "'socket'")),
     "bad_property_value": ("""
         from morse.builder import *
         robot = ATRV()
@@ -669,9 +669,9 @@ def test_overlays_interfaces_and_bindings(tmp_path):
     path = write(tmp_path, """
         from morse.builder import *
         robot = ATRV()
-        motion = MotionVW()
-        motion.add_overlay('socket', 'mysim.overlays.Speed', speed=2)
-        motion.configure_overlay('socket', 'mysim.overlays.Other')
+        motion = KukaLWR()
+        motion.add_overlay('ros', 'morse.middleware.ros.overlays.armatures.ArmatureController', namespace='/arm')
+        motion.configure_overlay('ros', 'morse.middleware.ros.overlays.armatures.ArmatureController')
         motion.add_interface('socket', port=61000)
         robot.append(motion)
         pose = Pose()
@@ -683,8 +683,9 @@ def test_overlays_interfaces_and_bindings(tmp_path):
     """)
     motion, pose = load(path).robots[0].components
     assert [o.model_dump() for o in motion.overlays] == [
-        {"middleware": "socket", "overlay": "mysim.overlays.Speed", "speed": 2},
-        {"middleware": "socket", "overlay": "mysim.overlays.Other"}]
+        {"middleware": "ros", "overlay": "morse.middleware.ros.overlays.armatures.ArmatureController",
+         "namespace": "/arm"},
+        {"middleware": "ros", "overlay": "morse.middleware.ros.overlays.armatures.ArmatureController"}]
     assert motion.interfaces == ["socket"] and motion.services == ["socket"]
     assert [(s.middleware, s.port) for s in motion.streams] == [("socket", 61000)]
     assert [(s.middleware, s.classpath, s.method, s.path) for s in pose.streams] == [

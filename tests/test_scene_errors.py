@@ -191,7 +191,7 @@ def write(tmp_path: Path, name: str, text: str) -> Path:
     ("object_type.yaml", "objects:\n  - type: boxx\n", 2, 11,
      rf"objects\[0\]\.type: unknown object type 'boxx' \(known: {NAMES}\); did you mean 'box'\?"),
     ("stream_middleware.yaml", "robots:\n  - type: atrv\n    components: [{type: pose, streams: [sockett]}]\n", 3, 41,
-     r"robots\[0\]\.components\[0\]\.streams\[0\]: 'sockett' is not one of 'socket' or 'text'; did you mean 'socket'\?"),
+     r"robots\[0\]\.components\[0\]\.streams\[0\]: 'sockett' is not one of 'ros', 'socket' or 'text'; did you mean 'socket'\?"),
     ("property_value.yaml", "robots:\n  - type: atrv\n    components:\n      - type: motion_vw\n"
      "        properties: {ControlType: Speed}\n", 5, 35,
      r"robots\[0\]\.components\[0\]\.properties\.ControlType: 'Speed' is not one of 'Velocity' or 'Position'"),

@@ -41,6 +41,7 @@ import logging
 import os
 import sys
 import tempfile
+import types
 import unittest
 from pathlib import Path
 
@@ -48,6 +49,7 @@ from morse.builder import TimeStrategies
 from morse.testing.exceptions import MorseTestingError
 from morsec.app.process import SimulationDidNotStart, SimulationProcess, build_call
 from morsec.errors import MorsecError
+from morsec.frontends.builder import builder_attribute, builder_names
 from morsec.frontends.builder import session as _builder_session
 
 testlogger = logging.getLogger("morsetesting.general")
@@ -90,6 +92,26 @@ def logs_folder(case: type) -> Path:
         return Path(explicit)
     source = inspect.getsourcefile(case) or getattr(sys.modules.get(case.__module__), "__file__", None) or "tests"
     return Path(tempfile.gettempdir()) / "morse-testing" / f"{Path(source).stem}-{os.getpid()}"
+
+
+def with_builder_names(method):
+    """`setUpEnv` as MORSE ran it: MORSE copied its source into a builder script that began with `from
+    morse.builder import *`, so its builder calls need no import in the test file (robots/pr2/tuck_arms_ros.py
+    has none). Here: the same function, seeing the builder's names over its module's."""
+    func = getattr(method, "__func__", None)
+    if func is None:
+        return method
+    scope = dict(func.__globals__)
+    for name in builder_names():
+        try:
+            scope[name] = builder_attribute("morse.builder", name)
+        except AttributeError:
+            continue
+    clone = types.FunctionType(func.__code__, scope, func.__name__, func.__defaults__, func.__closure__)
+    clone.__kwdefaults__ = func.__kwdefaults__
+    clone.__qualname__ = func.__qualname__
+    clone.__module__ = func.__module__
+    return types.MethodType(clone, method.__self__)
 
 
 class MorseTestRunner(unittest.TextTestRunner):
@@ -192,7 +214,8 @@ class MorseTestCase(unittest.TestCase):
                 log.write(f"== the scene of {case.__name__}: {case.__name__}.setUpEnv() ==\n")
                 try:
                     with contextlib.redirect_stdout(log):
-                        MorseTestCase._builds[case] = build_call(self.setUpEnv, out, report=log)
+                        MorseTestCase._builds[case] = build_call(with_builder_names(self.setUpEnv), out,
+                                                                 report=log)
                     log.write(f"built {out}\n")
                 except MorsecError as err:
                     log.write(f"error: {err}\n")

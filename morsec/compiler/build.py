@@ -19,15 +19,18 @@ from pathlib import Path
 from xml.sax.saxutils import escape as xml_escape
 
 import mujoco
+import numpy as np
 
 from morsec import __version__
 from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import assign_services, assign_streams, middleware_view
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
-from morsec.component.catalogue import Catalogue, is_builtin, level_class, modifier_class
+from morsec.component.catalogue import Catalogue, is_builtin, level_class, modifier_class, type_lineage
 from morsec.errors import SceneError, yaml_path
+from morsec.kits.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
 from morsec.kits.mjcf_names import belongs_to
+from morsec.middleware.registry import middleware
 from morsec.scene.manifest import (
     BUILTIN_ROOT,
     FORMAT_VERSION,
@@ -37,6 +40,7 @@ from morsec.scene.manifest import (
     Loop,
     Manifest,
     ModifierEntry,
+    OverlayEntry,
     RobotEntry,
 )
 from morsec.scene.walk import walk_components
@@ -80,7 +84,9 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str | bytes]:
     files.update(assets.files)
     files["scene.xml"] = xml
     env = scene.environment
-    streams = assign_streams([(c.fqn, cat.devices()[c.type].direction, specs) for c, specs in components])
+    placements = placements_on_robots(scene)
+    streams = assign_streams([(c.fqn, cat.devices()[c.type].direction, specs, type_lineage(cat.devices()[c.type]),
+                               c.properties, placements[c.fqn]) for c, specs in components])
     services = assign_services({c.fqn: c.services for c, _ in components}, env.services)
     managers = {name: spec.model_dump(mode="json") for name, spec in sorted(env.stream_managers.items())}
     files["middleware.json"] = dump(middleware_view(streams, services, managers))
@@ -112,15 +118,36 @@ def component_entries(scene, cat: Catalogue) -> list[tuple[ComponentEntry, list]
             params = mod_cls.resolve_params(dict(spec.model_extra or {}), env_properties)
             modifiers.append(ModifierEntry(name=spec.name, cls=f"{mod_cls.__module__}:{mod_cls.__qualname__}",
                                            params=params.model_dump(mode="json")))
+        overlays = [OverlayEntry(middleware=o.middleware, overlay=o.overlay,
+                                 cls=middleware(o.middleware).overlay_class(o.overlay, type_lineage(cls)),
+                                 params=dict(o.model_extra or {})) for o in comp.overlays]
         entries.append((ComponentEntry(
             fqn=fqn, robot=robot.name, parent=parent, type=comp.type, kind=cls.kind, component=component_ref(cls),
             level_class=impl.__name__, level=comp.level, frequency=comp.frequency,
             properties=comp.properties.model_dump(mode="json"),
             data_fields=[f.name for f in impl.fields_at(comp.level)],
-            services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, tags=comp.tags,
+            services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, overlays=overlays,
+            tags=comp.tags,
             path=list(path),
         ), comp.streams))
     return entries
+
+
+def placements_on_robots(scene) -> dict[str, tuple[list[float], list[float]]]:
+    """Each component's position and XYZ Euler rotation on its robot, as the scene placed it (a nested
+    component's `translate` and `rotate` composed with its parents')."""
+    frames: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    out = {}
+    for placed in walk_components(scene):
+        comp = placed.component
+        local = quat_to_matrix(euler_to_quat(*comp.rotate))
+        position, rotation = np.array(comp.translate, float), local
+        if placed.parent in frames:
+            parent_position, parent_rotation = frames[placed.parent]
+            position, rotation = parent_position + parent_rotation @ position, parent_rotation @ local
+        frames[placed.fqn] = (position, rotation)
+        out[placed.fqn] = ([float(v) for v in position], [float(v) for v in matrix_to_euler(rotation)])
+    return out
 
 
 def component_ref(cls) -> ComponentRef:

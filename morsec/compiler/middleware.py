@@ -6,18 +6,17 @@ from __future__ import annotations
 from morsec.middleware.base import StreamRequest
 from morsec.middleware.registry import middleware, middlewares
 from morsec.scene.manifest import ServiceEntry, StreamEntry
-from morsec.scene.models import StreamSpecBase
 
 
-def assign_streams(components: list[tuple[str, str, list]]) -> list[StreamEntry]:
-    """`components`: (fqn, default direction, the IR's stream specs) of every component."""
+def assign_streams(components: list[tuple[str, str, list, tuple[str, ...], dict, tuple]]) -> list[StreamEntry]:
+    """`components`: (fqn, default direction, the IR's stream specs, its type and the types it derives from,
+    its resolved properties, its placement on its robot) of every component."""
     requests: dict[str, list[StreamRequest]] = {}
-    for fqn, direction, specs in sorted(components, key=lambda c: c[0]):
+    for fqn, direction, specs, types, properties, placement in sorted(components, key=lambda c: c[0]):
         for spec in specs:
-            given = spec.model_dump(exclude_none=True)
-            options = {k: v for k, v in given.items() if k not in StreamSpecBase.model_fields}
+            options = spec.model_dump(exclude_none=True, exclude={"middleware", "direction"})
             requests.setdefault(spec.middleware, []).append(
-                StreamRequest(fqn, spec.direction or direction, options))
+                StreamRequest(fqn, spec.direction or direction, options, types, properties, placement))
     entries = []
     for name, streams in requests.items():
         for stream, endpoint in zip(streams, middleware(name).assign(streams)):

@@ -299,6 +299,12 @@ def load_class(ref: str | ComponentRefLike, name: str | None = None) -> type:
     return cls
 
 
+def type_lineage(cls) -> tuple[str, ...]:
+    """A component's catalogue id, then those of the catalogue types it derives from (sick: laser_scanner)."""
+    ids = [vars(k)["id"] for k in cls.__mro__ if isinstance(vars(k).get("id"), str) and vars(k)["id"]]
+    return tuple(dict.fromkeys(ids))
+
+
 def component_class(kind: str, cid: str, start: Path | None = None) -> type[Component]:
     """The class of component `cid` of `kind` ("sensors", ...) on the search path, for a component.py that
     extends another one (a preset: `LaserScanner = component_class("sensors", "laser_scanner")`). Reuses

@@ -301,9 +301,12 @@ class Robot(Component):
     # {component: (component, body)}, e.g. the PR2's {"head": ("torso", "torso_lift_link")}; the first keeps
     # its name (robot.head) and its `translate` is then relative to that body
     component_mounts: ClassVar[dict[str, tuple[str, str]]] = {}
-    # what the builder's robot.add_interface(middleware) does (MORSE builder robots that define it, BasePR2):
-    # {"streams": (component, ...), "services": (component, ...)}, components named relative to the robot
-    builder_interface: ClassVar[dict[str, tuple[str, ...]]] = {}
+    # what the builder's robot.add_interface(middleware) does (MORSE builder robots that define it, BasePR2),
+    # per middleware ("*": any other): {"streams": (component or (component, {stream options}), ...),
+    # "services": (component, ...), "overlays": ((component, overlay class path, {kwargs}), ...)}. Components
+    # are named as the builder's attributes of the robot (`torso_pose` for the torso's `pose`); "{robot}" in an
+    # option's text is the robot's name
+    builder_interface: ClassVar[dict[str, dict[str, tuple]]] = {}
 
     @classmethod
     def origin_z(cls, z: float, properties) -> float:

@@ -81,6 +81,15 @@ class JointServos:
             aim = aim - velocity * held / 2
         d.ctrl[self.actuators] = aim + ff / np.where(self.kp > 0, self.kp, 1.0)
 
+    def hold(self, values) -> None:
+        """Keep the joints exactly at `values` (within their limits) after every physics step, until `release`:
+        joints at rest stay where they were put, not where the servo settles (a micron off), as MORSE's
+        kinematic armatures did. The servos still push: what the joints carry weighs on the robot."""
+        self.sim.joint_holds[self] = (self.qpos, self.dof, self.clamp(values))
+
+    def release(self) -> None:
+        self.sim.joint_holds.pop(self, None)
+
     def teleport(self, values, which=None) -> None:
         """Put joints at `values` at once, at rest, and hold them there: all of them, or those of the
         indices `which` (`values` then gives theirs, in that order)."""

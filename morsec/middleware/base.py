@@ -21,11 +21,16 @@ from morsec.middleware.poller import Poller
 
 @dataclass(frozen=True)
 class StreamRequest:
-    """A stream as the scene asks for it: the component, the direction, the options the scene gave."""
+    """A stream as the scene asks for it: the component, the direction, the options the scene gave (topic,
+    frame_id, a full binding's classpath and method, and this middleware's own)."""
 
     component: str
     direction: str  # IN (actuator input) or OUT (sensor output)
     options: dict[str, Any]
+    types: tuple[str, ...] = ()  # the component's catalogue id, then those of the types it derives from
+    properties: dict[str, Any] = field(default_factory=dict)  # its resolved properties
+    # where it is on its robot, as the scene placed it (nesting composed): ([x, y, z] m, [roll, pitch, yaw] rad)
+    placement: tuple[list[float], list[float]] = ([0.0, 0.0, 0.0], [0.0, 0.0, 0.0])
 
 
 @dataclass
@@ -38,6 +43,7 @@ class RunContext:
     output_dir: Path  # where file outputs go
     port_base: int | None = None  # --port-base
     service_port: int | None = None  # --service-port
+    now: Callable[[], float] = field(default=lambda: 0.0)  # the simulated time messages are stamped with, s
     # fixed_step's loop waits, briefly, for what a client sends right after its `time sleep` ended and for
     # the first message of a client that has just connected to an actuator stream: the middleware tells
     # it of actuator stream connections (the connection object) opening, sending a message, and closing
@@ -80,6 +86,22 @@ class Middleware:
 
     # ---- build time
     @classmethod
+    def unavailable(cls) -> str | None:
+        """Why this middleware cannot work on this machine (what to install), or None."""
+        return None
+
+    @classmethod
+    def check_stream(cls, request: StreamRequest) -> str | None:
+        """Why this middleware cannot carry this stream (no serialiser for the component ...), or None."""
+        return None
+
+    @classmethod
+    def overlay_class(cls, overlay: str, types: tuple[str, ...]) -> str:
+        """The importable class (module:Class) of an overlay the scene names (MORSE's class path) for a
+        component of `types`; ValueError saying why when there is none."""
+        raise ValueError(f"the {cls.name} middleware has no overlays")
+
+    @classmethod
     def assign(cls, streams: list[StreamRequest]) -> list[dict[str, Any]]:
         """The endpoint of each stream (same order), recorded in the manifest; streams come sorted by component."""
         return [{} for _ in streams]
@@ -100,6 +122,11 @@ class Middleware:
 
     def open_services(self, endpoint: dict[str, Any]) -> None:
         raise NotImplementedError(f"middleware {self.name!r} carries no services")
+
+    def open_overlay(self, component: str, instance: Any, overlay: str, params: dict[str, Any]) -> None:
+        """Serve a component's services adapted by an overlay (`overlay`: module:Class, from overlay_class);
+        `instance` is the component, for what the overlay reads of it on the loop's thread."""
+        raise NotImplementedError(f"middleware {self.name!r} has no overlays")
 
     def services(self) -> dict[str, Any]:
         """Objects whose @service methods this middleware adds to pseudo-components ({"simulation": obj})."""

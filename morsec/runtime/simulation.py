@@ -164,6 +164,9 @@ class Simulation:
         self.dynamics = True
         self.frozen: dict[int, tuple] = {}
         self.pinned: dict[int, tuple] = {}  # bodies held where an actuator put them, for this frame's physics
+        # joints held exactly where a component put them, frame after frame, until it lets them go (an
+        # armature at rest: MORSE's kinematic bones): {owner: (qpos indices, dof indices, values)}
+        self.joint_holds: dict[Any, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
         self._free_joints: dict[int, tuple[int, int] | None] = {}  # body -> free_joint(body), looked up once
         self.requests = RequestManager()
         self.requests.on_leave.append(self.client_left)
@@ -263,8 +266,10 @@ class Simulation:
         opts = self.options
         context = RunContext(self.poller, self.requests, opts.bind, Path(opts.output_dir), opts.port_base,
                              opts.service_port, stream_opened=self.stream_opened, stream_heard=self.stream_heard,
-                             stream_closed=self.stream_closed, reader_opened=self.reader_opened)
-        used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services})
+                             stream_closed=self.stream_closed, reader_opened=self.reader_opened, now=self.clock.now)
+        overlays = [(c.fqn, o) for c in manifest.components for o in c.overlays]
+        used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services}
+                      | {o.middleware for _, o in overlays})
         try:
             for name in used:
                 self.middlewares[name] = middleware(name)(context, manifest.stream_managers.get(name, {}))
@@ -277,6 +282,11 @@ class Simulation:
                     comp = self.by_name[fqn]
                     self.requests.expose(fqn, comp.instance, type(comp.instance).services())
                 self.middlewares[entry.middleware].open_services(entry.endpoint)
+            for fqn, overlay in overlays:  # the overlay calls the component's services, served or not
+                comp = self.by_name[fqn]
+                if fqn not in self.requests.exposed:
+                    self.requests.expose(fqn, comp.instance, type(comp.instance).services())
+                self.middlewares[overlay.middleware].open_overlay(fqn, comp.instance, overlay.cls, overlay.params)
         except OSError as err:
             self.close()
             raise RuntimeFailure(f"cannot open the simulation's sockets on {opts.bind}: "
@@ -592,6 +602,9 @@ class Simulation:
                 d.qpos[adr:adr + 7] = qpos
                 d.qvel[dof:dof + 6] = 0.0
             self.pinned.clear()
+        for qpos_index, dof_index, values in self.joint_holds.values():
+            d.qpos[qpos_index] = values
+            d.qvel[dof_index] = 0.0
         sampled = False
         for handle in handles:
             if handle.ticks and handle.sample_tick_end():

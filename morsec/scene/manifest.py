@@ -58,6 +58,13 @@ class ModifierEntry(Entry):
     params: dict[str, Any] = Field(description="parameters, environment defaults resolved")
 
 
+class OverlayEntry(Entry):
+    middleware: str
+    overlay: str = Field(description="the overlay as the scene names it (MORSE's class path)")
+    cls: str = Field(description="the overlay class the middleware serves it with, importable: module:Class")
+    params: dict[str, Any] = Field(description="its keyword arguments (a namespace ...)")
+
+
 class ComponentEntry(Entry):
     fqn: str
     robot: str
@@ -73,6 +80,7 @@ class ComponentEntry(Entry):
     services: list[str] = Field(description="middlewares its services are exposed on")
     service_names: list[str]
     modifiers: list[ModifierEntry]
+    overlays: list[OverlayEntry] = Field(default_factory=list, description="its services adapted for one middleware")
     tags: dict[str, Any] = Field(description="game properties its type does not declare, which sensors read")
     path: list[str | int] = Field(description="where it is in the scene (for messages)")
 

@@ -6,8 +6,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any, NoReturn
 
-from morsec.component.catalogue import Catalogue, modifier_class
+from morsec.component.catalogue import Catalogue, modifier_class, type_lineage
 from morsec.errors import SceneError, yaml_path
+from morsec.middleware.base import StreamRequest
 from morsec.middleware.registry import middleware as middleware_class
 from morsec.middleware.registry import service_middlewares
 from morsec.scene.models import StreamSpec, StreamSpecBase
@@ -106,6 +107,8 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
         _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail, env_properties)
         _check_robot_requirements(robot, ("robots", r), cat, fail)
 
+    for k, middleware in enumerate(scene.environment.services):
+        _check_available(middleware, ("environment", "services", k), fail)
     multinode = scene.environment.multinode
     if multinode is not None:
         robot_names = {robot.name for robot in scene.robots}
@@ -135,19 +138,46 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
             _add_stream(comp, cls, middleware)
             _add_service(comp, middleware)
         if default_interface:
-            if not comp.streams:
+            # a component the middleware has no message for is left out (ROS: a thermometer), as named ones
+            # are refused below
+            if not comp.streams and not middleware_class(default_interface).check_stream(StreamRequest(
+                    comp.name or comp.type, cls.direction, {}, type_lineage(cls),
+                    comp.properties.model_dump(mode="json"))):
                 _add_stream(comp, cls, default_interface)
             if not comp.services:
                 _add_service(comp, default_interface)
+        here = parent_path + ("components", i)
+        types = type_lineage(cls)
         for k, stream in enumerate(comp.streams):
             if stream.direction is None:
                 stream.direction = cls.direction
-            _check_stream_options(stream, parent_path + ("components", i, "streams", k), fail)
+            _check_available(stream.middleware, here + ("streams", k), fail)
+            _check_stream_options(stream, here + ("streams", k), fail)
+            request = StreamRequest(comp.name, stream.direction, stream.model_dump(
+                exclude_none=True, exclude={"middleware", "direction"}), types, comp.properties.model_dump(mode="json"))
+            problem = middleware_class(stream.middleware).check_stream(request)
+            if problem:
+                fail(here + ("streams", k), problem)
+        for k, middleware in enumerate(comp.services):
+            _check_available(middleware, here + ("services", k), fail)
+        for k, overlay in enumerate(comp.overlays):
+            _check_available(overlay.middleware, here + ("overlays", k), fail)
+            try:
+                middleware_class(overlay.middleware).overlay_class(overlay.overlay, types)
+            except ValueError as err:
+                fail(here + ("overlays", k, "overlay"), str(err))
         for m, modifier in enumerate(comp.modifiers):
             _check_modifier(modifier, cls, parent_path + ("components", i, "modifiers", m), fail, env_properties,
                             cat)
         _resolve_children(comp.components, parent_path + ("components", i), default_interface, cat, fail,
                           env_properties)
+
+
+def _check_available(middleware: str, path: tuple, fail) -> None:
+    """A middleware this machine cannot run (ROS not installed) stops the build, saying what to install."""
+    problem = middleware_class(middleware).unavailable()
+    if problem:
+        fail(path, problem)
 
 
 def _check_tags(entry, cls, path: tuple, fail) -> None:

@@ -180,6 +180,7 @@ class Armature(Actuator):
     # ------------------------------------------------------------------ the tick
     def default_action(self):
         if self._ik_move is not None:
+            self.servos.release()
             self._exec_ik_move()
             return
         if self._trajectory is not None:
@@ -194,7 +195,10 @@ class Armature(Actuator):
         servos.command(servos.setpoint + delta, delta * self.frequency, held=1.0 / self.frequency)
         if self._reached(targets):
             self.joint_speed.clear()
+            self.servos.hold(targets)
             self.completed("SUCCESS")
+        else:
+            self.servos.release()
 
     # ------------------------------------------------------------------ services: joints
     def _teleport(self, indices: list[int], values: list[float]) -> None:
@@ -317,6 +321,7 @@ class Armature(Actuator):
         traj = self._trajectory
         t = self.sim.clock.now() - traj["start"]
         servos = self.servos
+        servos.release()
         if t < 0:
             servos.command(servos.setpoint)
             return
@@ -337,6 +342,7 @@ class Armature(Actuator):
         self._set_targets(final)
         if self._reached(final):
             self._trajectory = None
+            servos.hold(final)
             self.completed("SUCCESS")
 
     # ------------------------------------------------------------------ services: inverse kinematics

@@ -113,6 +113,7 @@ class HumanSkeleton(Armature):
             return
         # the swing is added to what the servos are told, not to the posture they keep (servos.setpoint)
         servos = self.servos
+        servos.release()  # the posture is held at rest (Armature); the swing moves the joints off it
         posture = servos.setpoint.copy()
         swing = posture.copy()
         for i, amplitude, phase in self._walk:

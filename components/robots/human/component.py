@@ -24,9 +24,8 @@ class Human(Robot):
         {"name": "skeleton", "type": "human_skeleton",
          "components": [{"name": "joint_states", "type": "armature_pose", "attribute": "joint_states"}]},
     )
-    builder_interface: ClassVar[dict[str, tuple[str, ...]]] = {
-        "streams": ("skeleton.joint_states",),
-        "services": ("skeleton", "skeleton.joint_states"),
+    builder_interface: ClassVar[dict[str, dict[str, tuple]]] = {
+        "*": {"streams": ("skeleton.joint_states",), "services": ("skeleton", "skeleton.joint_states")},
     }
 
     class Properties(RobotProperties):

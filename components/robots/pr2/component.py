@@ -11,6 +11,11 @@ def _armature(name: str, type_: str, translate: list[float]) -> dict:
             "components": [{"name": "pose", "type": "armature_pose"}]}
 
 
+# the PR2's armatures and the names of their controllers on the real robot
+_CONTROLLERS = (("torso", "torso_controller"), ("head", "head_traj_controller"), ("l_arm", "l_arm_controller"),
+                ("r_arm", "r_arm_controller"))
+
+
 class BasePR2(Robot):
     """Willow Garage's PR2 with its armatures, MORSE's BasePR2: `torso` (pr2_torso: torso_lift_joint, 0 ..
     0.31 m), `head` (pr2_head: head_pan_joint, head_tilt_joint), `l_arm` and `r_arm` (pr2_l_arm, pr2_r_arm:
@@ -41,10 +46,24 @@ class BasePR2(Robot):
         "l_arm": ("torso", "torso_lift_link"),
         "r_arm": ("torso", "torso_lift_link"),
     }
-    # what the builder's add_interface(middleware) (and add_stream) does on a BasePR2, as MORSE's
-    builder_interface: ClassVar[dict[str, tuple[str, ...]]] = {
-        "streams": ("joint_state", "posture"),
-        "services": ("torso", "head", "l_arm", "r_arm"),
+    # what the builder's add_interface(middleware) (and add_stream) does on a BasePR2, as MORSE's. ROS: the
+    # real PR2's interfaces (/joint_states, /torso_controller ... as PR2 software expects them), each also in
+    # the robot's namespace (/pr2/joint_states ...: MORSE's /robot/component naming, and two PR2s apart)
+    builder_interface: ClassVar[dict[str, dict[str, tuple]]] = {
+        "*": {"streams": ("joint_state", "posture"), "services": ("torso", "head", "l_arm", "r_arm")},
+        "ros": {
+            "streams": tuple(
+                (component, {"method": f"morse.middleware.ros.{method}", "topic": prefix + topic})
+                for prefix in ("", "/{robot}")
+                for component, method, topic in (
+                    ("joint_state", "jointstate.JointStatePR2Publisher", "/joint_states"),
+                    *((f"{part}_pose", "jointtrajectorycontrollers.JointTrajectoryControllerStatePublisher",
+                       f"/{controller}/state") for part, controller in _CONTROLLERS))),
+            "overlays": tuple(
+                (part, "morse.middleware.ros.overlays.armatures.ArmatureController",
+                 {"namespace": f"{prefix}/{controller}"})
+                for prefix in ("", "/{robot}") for part, controller in _CONTROLLERS),
+        },
     }
 
     class Properties(RobotProperties):

@@ -727,24 +727,47 @@ class Robot(AbstractComponent):
         for sub in spec.get("components", ()):
             self._default_child(child, sub, f"{attribute}_")
 
-    def _builder_interface(self) -> dict:
+    def _builder_interface(self, middleware: str | None = None) -> dict:
+        """The robot type's own interface for `middleware` (its "*" entry for others); {} if it has none."""
         cls = self._catalogue_class(self._type_name)
-        return getattr(cls, "builder_interface", {}) if cls else {}
+        table = getattr(cls, "builder_interface", {}) if cls else {}
+        return table.get(middleware, table.get("*", {})) if middleware is not None else table
 
     def add_interface(self, interface, **kwargs):
-        """On a robot type that defines it (BasePR2): streams and services of its own components, as MORSE's
-        builder class did; on others, an error (interfaces are set on sensors and actuators)."""
-        table = self._builder_interface()
-        if not table:
+        """On a robot type that defines it (BasePR2): streams, services and overlays of its own components, as
+        MORSE's builder class did; on others, an error (interfaces are set on sensors and actuators)."""
+        if not self._builder_interface():
             return super().add_interface(interface, **kwargs)
-        for key, method in (("streams", "add_stream"), ("services", "add_service")):
-            for name in table.get(key, ()):
-                child = self._descendant(name)
-                if child is not None:
-                    getattr(child, method)(interface, **(kwargs if key == "streams" else {}))
+        middleware, _ = self._middleware_of(interface, "add_interface")
+        table = self._builder_interface(middleware)
+
+        def named_after_robot(component, key: str) -> None:
+            """The robot's name is known when the scene is emitted: "{robot}" is filled in then."""
+            entry = component._raw[key][-1]
+            if isinstance(entry, dict):
+                self.__dict__.setdefault("_named_after_robot", [])
+                self._named_after_robot += [(entry, k, v) for k, v in entry.items()
+                                            if isinstance(v, str) and "{robot}" in v]
+
+        for entry in table.get("streams", ()):
+            name, options = (entry, {}) if isinstance(entry, str) else entry
+            if (component := self._descendant(name)) is not None:
+                component.add_stream(interface, **{**options, **kwargs})
+                named_after_robot(component, "streams")
+        for name in table.get("services", ()):
+            if (component := self._descendant(name)) is not None:
+                component.add_service(interface)
+        for name, overlay, options in table.get("overlays", ()):
+            if (component := self._descendant(name)) is not None:
+                component.add_overlay(interface, overlay, **options)
+                named_after_robot(component, "overlays")
 
     def _descendant(self, path: str) -> AbstractComponent | None:
-        """A component of this robot by its name relative to it (`skeleton.joint_states`), or None."""
+        """A component of this robot by its builder attribute (`torso_pose`) or its name relative to it
+        (`skeleton.joint_states`), or None."""
+        found = getattr(self, path, None) if "." not in path else None
+        if isinstance(found, AbstractComponent) and found._parent is not None:
+            return found
         node: AbstractComponent = self
         for part in path.split("."):
             node = next((c for c in node._children if c.basename == part), None)
@@ -758,6 +781,12 @@ class Robot(AbstractComponent):
         if self._builder_interface() and method is None and path is None and classpath is None:
             return self.add_interface(datastream, **kwargs)
         return super().add_stream(datastream, method, path, classpath, direction, **kwargs)
+
+    def _emit(self, prefix: tuple, smap) -> dict:
+        name = self._final_name or self.name
+        for entry, key, template in self.__dict__.get("_named_after_robot", ()):
+            entry[key] = template.replace("{robot}", name)
+        return super()._emit(prefix, smap)
 
     def add_default_interface(self, stream):
         """Stream + service `stream` on every component of the robot that has none."""
