@@ -12,6 +12,7 @@ from __future__ import annotations
 import logging
 import os
 import sys
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -28,6 +29,7 @@ log = logging.getLogger("morsec.display")
 GLFW_KEYS = {265: "up", 264: "down", 263: "left", 262: "right", **{ord(k.upper()): k for k in KEYS if len(k) == 1}}
 GLFW_SPACE = 32
 FRAME_RATE_WINDOW = 0.5  # wall-clock s over which the frame rate shown is measured
+CLOSE_WAIT = 5.0  # wall-clock s a closing native viewer is given to end its render thread
 
 
 @dataclass
@@ -126,11 +128,15 @@ class NativeView(View):
                 self.toggle_pause()
             keys.tap(GLFW_KEYS.get(code, ""))
 
+        before = set(threading.enumerate())
         try:
             self.viewer = mujoco.viewer.launch_passive(model, data, show_left_ui=False, show_right_ui=False,
                                                        key_callback=key)
         except Exception as err:
             raise RuntimeFailure(f"cannot open the native viewer: {err}") from None
+        # the viewer's render thread: close() waits for it, or the process could exit while it still draws
+        # (a segmentation fault at exit, one run in two)
+        self._threads = [t for t in threading.enumerate() if t not in before]
         self._mujoco = mujoco
         look = display.look(environment)
         with self.viewer.lock():
@@ -165,6 +171,8 @@ class NativeView(View):
 
     def close(self) -> None:
         self.viewer.close()
+        for thread in self._threads:
+            thread.join(CLOSE_WAIT)
 
 
 X11_F5 = 0xFFC2  # the X keysym of F5
