@@ -135,7 +135,8 @@ def test_a_run_without_a_viewer_names_the_settings_it_ignores_and_logs_at_debug_
 
 
 def test_a_run_with_default_settings_warns_nothing_and_logs_no_debug(tmp_path):
-    result = run_headless(tmp_path)
+    """fastmode (wireframes in a viewer) included: every MORSE test sets it, for speed."""
+    result = run_headless(tmp_path, fastmode=True)
     assert result.returncode == 0, result.stderr
     assert "display settings" not in result.stderr and "DEBUG" not in result.stderr
 

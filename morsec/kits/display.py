@@ -57,8 +57,9 @@ SETTINGS: tuple[Setting, ...] = (
     Setting("camera.speed", "set_camera_speed",
             lambda env: env.get("camera", {}).get("speed", DEFAULT_CAMERA_SPEED) != DEFAULT_CAMERA_SPEED,
             render=NA, native=IGNORED, web=IGNORED, headless=NA),
+    # fastmode draws wireframes too, but asks above all for speed (MORSE's tests set it): no warning for it
     Setting("viewport.shade", "set_viewport(viewport_shade), Environment(fastmode=True)",
-            lambda env: _shade(env) != DEFAULT_SHADE,
+            lambda env: env.get("viewport", {}).get("shade", DEFAULT_SHADE) != DEFAULT_SHADE,
             render="drawn as the [mode](#viewport-modes) says", native="drawn as the mode says",
             web="drawn as the mode says", headless=IGNORED),
     Setting("viewport.clip_end", "set_viewport(clip_end=)",
