@@ -30,7 +30,7 @@ from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
 if TYPE_CHECKING:
-    from morsec.runtime.view import View
+    from morsec.runtime.view import Status, View
 
 log = logging.getLogger("morsec.runtime")
 
@@ -234,10 +234,10 @@ class Simulation:
                 self.close()
                 raise
 
-    def display_status(self, debug: bool):
+    def display_status(self, debug: bool) -> Status:
         """What a viewer's overlays show: the time, the frames, and with `debug` (show_debug) each robot's
         pose and each component's data, as MORSE listed the game properties marked for debugging."""
-        from morsec.runtime.view import Status
+        from morsec.runtime import view
         rows: list[tuple[str, str]] = []
         if debug:
             for robot in self.robots:
@@ -245,11 +245,11 @@ class Simulation:
                 yaw = float(np.arctan2(rot[1, 0], rot[0, 0]))
                 rows.append((robot.name, f"x {pos[0]:.2f}  y {pos[1]:.2f}  z {pos[2]:.2f}  yaw {yaw:.2f}"))
             for comp in self.components:
-                shown = [f"{key} {_shown(value)}" for key, value in comp.instance.local_data.items()
-                         if key != "timestamp" and _shown(value) is not None]
+                shown = [f"{key} {text}" for key, value in comp.instance.local_data.items()
+                         if key != "timestamp" and (text := _shown(value)) is not None]
                 if shown:
                     rows.append((comp.fqn, "  ".join(shown[:DEBUG_FIELDS])))
-        return Status(self.clock.elapsed, self.clock.frames, rows)
+        return view.Status(self.clock.elapsed, self.clock.frames, rows)
 
     # ---------------------------------------------------------------- construction
     def _robot(self, entry: RobotEntry) -> RobotInfo:
