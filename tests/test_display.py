@@ -182,21 +182,20 @@ def test_web_viewer_draws_as_the_settings_say_and_its_panel_runs_the_simulation(
         sim.frame()  # the pose sensor's first reading
         with connect(f"ws://127.0.0.1:{port}/ui?sid=test", max_size=None, open_timeout=20) as ws:
             browser = BrowserKeys(ws)
-            try:
-                def drawn() -> dict:
-                    view.sync()
-                    time.sleep(0.04)
-                    return dict(panel.drawn)
-                rows = wait_until(lambda: (d := drawn()) and "frame rate" in d and d, timeout=20)
-                assert rows["PAUSED (space or the Run button runs it)"] == ""
-                assert rows["robot"].startswith("x 1.00  y 2.00  z ")
-                assert rows["robot.pose"].startswith("x 1  y 2  z ")
-                assert set(rows) >= {"simulated time", "real-time factor"}
-                browser.hold({SPACE}, 0.3)
-                browser.hold(set(), 0.2)
-                wait_until(lambda: drawn() is not None and not view.paused, timeout=10)
-            finally:
-                browser.close()
+
+            def drawn() -> dict:
+                view.sync()
+                time.sleep(0.04)
+                return dict(panel.drawn)
+            rows = wait_until(lambda: (d := drawn()) and "frame rate" in d and d, timeout=20)
+            assert rows["PAUSED (space or the Run button runs it)"] == ""
+            assert rows["robot"].startswith("x 1.00  y 2.00  z ")
+            assert rows["robot.pose"].startswith("x 1  y 2  z ")
+            assert set(rows) >= {"simulated time", "real-time factor"}
+            browser.hold({SPACE}, 0.3)
+            browser.hold(set(), 0.2)
+            wait_until(lambda: drawn() is not None and not view.paused, timeout=10)
+            browser.close()
     finally:
         sim.close()
 

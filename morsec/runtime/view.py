@@ -29,6 +29,7 @@ log = logging.getLogger("morsec.display")
 GLFW_KEYS = {265: "up", 264: "down", 263: "left", 262: "right", **{ord(k.upper()): k for k in KEYS if len(k) == 1}}
 GLFW_SPACE = 32
 FRAME_RATE_WINDOW = 0.5  # wall-clock s over which the frame rate shown is measured
+WEB_READY_WAIT = 20.0  # wall-clock s the web viewer is given to take the model
 CLOSE_WAIT = 5.0  # wall-clock s a closing native viewer is given to end its render thread
 
 
@@ -204,6 +205,11 @@ class WebView(View):
             self._restore()
             raise RuntimeFailure(f"cannot start the web viewer on {bind}:{port}: {err}") from None
         self._model, self._data = model, data
+        # ready once the viewer thread has the model: a browser on /ui before then could meet Studio's UI half
+        # set up (ImGui's "font atlas is not built"), which closes the viewer
+        end = time.monotonic() + WEB_READY_WAIT
+        while not self.panel.model_shown and time.monotonic() < end:
+            time.sleep(0.02)
         print(f"web viewer: http://{bind}:{port}/", flush=True)
         keys.source = "web"
 
