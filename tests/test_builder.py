@@ -374,7 +374,8 @@ def test_morse_only_settings_land_in_the_manifest(tmp_path, capsys):
     out = build_scene(SCRIPTS / "display_and_blender.py", tmp_path / "b")
     manifest = json.loads((out / "manifest.json").read_text())
     only = manifest["scene"]["environment"]["morse_only"]
-    assert set(only) == {"set_material_mode", "set_horizon_color", "enable_mist", "use_vsync", "set_stereo"}
+    assert set(only) == {"set_material_mode", "set_horizon_color", "enable_mist", "use_vsync"}
+    assert manifest["scene"]["environment"]["stereo"] == "NONE"  # set_stereo is a display setting
     assert only["set_horizon_color"] == {"color": [0.1, 0.2, 0.3]}
 
 

@@ -51,7 +51,10 @@ SECTIONS = (
             "How simulated time advances (MORSE's time strategies)."),
     Section("camera", "environment.camera", "CameraSpec",
             "The viewer's camera (MORSE's default camera). It is written to scene.xml as `morsec_default`."),
-    Section("viewport", "environment.viewport", "ViewportSpec", "Display settings, recorded for the viewer."),
+    Section("viewport", "environment.viewport", "ViewportSpec",
+            "`set_viewport`: how the viewers and `morsec render` draw the scene; see the [display settings]"
+            "(running.md#display-settings), which say what each viewer does with each of the environment's "
+            "display keys."),
     Section("stream-managers", "environment.stream_managers.<middleware>", "StreamManagerSpec",
             "`configure_stream_manager(middleware, ...)`: one entry per middleware name."),
     Section("multinode", "environment.multinode", "MultinodeSpec",

@@ -86,8 +86,11 @@ def render(
     height: Annotated[int, typer.Option(min=16, max=1080, help="image height, pixels")] = 600,
 ) -> None:
     """Render a picture of SCENE headless on the CPU (EGL, else OSMesa), from the environment's camera."""
+    import logging
+
     from morsec.app.project import prepare_build
     from morsec.kits.render import render_build
+    logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     try:
         build_dir = prepare_build(scene, None)
         path = render_build(build_dir, out, camera, width, height)

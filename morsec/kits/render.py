@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import logging
 from pathlib import Path
 
 import numpy as np
@@ -55,7 +56,11 @@ def use_chosen_gl() -> None:
 
 
 def render_build(build_dir: Path, out: Path, camera: str | None = None, width: int = 800, height: int = 600) -> Path:
+    """A PNG of the build's scene, drawn as its display settings say (morsec.kits.display); the settings a
+    picture cannot show are named in one warning."""
     import mujoco
+
+    from morsec.kits import display
     manifest = json.loads((Path(build_dir) / "manifest.json").read_text())
     model = mujoco.MjModel.from_xml_path(str(Path(build_dir) / "scene.xml"))
     data = mujoco.MjData(model)
@@ -64,13 +69,16 @@ def render_build(build_dir: Path, out: Path, camera: str | None = None, width: i
     if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, name) < 0:
         cameras = [model.camera(i).name for i in range(model.ncam)]
         raise MorsecError(f"no camera {name!r} in the scene; cameras: {', '.join(cameras)}")
+    environment = manifest["scene"]["environment"]
+    if (line := display.warning(environment, display.RENDER)) is not None:
+        logging.getLogger("morsec.display").warning(line)
+    look = display.look(environment)
     renderer = open_renderer(model, width, height)
     try:
-        options = display_options(manifest["scene"]["environment"])
-        renderer.update_scene(data, camera=name, scene_option=options)
-        if manifest["scene"]["environment"]["viewport"]["shade"] in ("WIREFRAME", "BOUNDBOX") \
-                or manifest["scene"]["environment"]["fastmode"]:
-            renderer.scene.flags[mujoco.mjtRndFlag.mjRND_WIREFRAME] = 1
+        renderer.update_scene(data, camera=name, scene_option=look.option)
+        for flag, value in look.flags.items():
+            renderer.scene.flags[flag] = value
+        renderer.scene.stereo = look.stereo
         image = renderer.render()
     finally:
         renderer.close()
@@ -79,15 +87,3 @@ def render_build(build_dir: Path, out: Path, camera: str | None = None, width: i
     out.parent.mkdir(parents=True, exist_ok=True)
     write_png(out, np.asarray(image))
     return out
-
-
-def display_options(environment: dict):
-    """The seed's display settings mapped onto MuJoCo's visualisation options where there is an equivalent:
-    show_physics shows collision geometry and contacts."""
-    import mujoco
-    option = mujoco.MjvOption()
-    if environment.get("show_physics"):
-        option.geomgroup[3] = 1
-        option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTPOINT] = 1
-        option.flags[mujoco.mjtVisFlag.mjVIS_CONTACTFORCE] = 1
-    return option

@@ -11,7 +11,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mujoco
 import numpy as np
@@ -29,6 +29,9 @@ from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
+if TYPE_CHECKING:
+    from morsec.runtime.view import Status, View
+
 log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
@@ -41,6 +44,8 @@ ANSWER_GAP = 0.002
 # so that it has read the messages the stream sent it before (the frame its sleep ended at)
 READER_POLL = 0.015
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
+PAUSED_POLL = 0.02  # s of wall time between two looks at a paused viewer (requests are served meanwhile)
+DEBUG_FIELDS = 6  # a component's data fields listed by show_debug, at most
 
 
 @dataclass
@@ -215,15 +220,45 @@ class Simulation:
             self.requests.expose(name, obj, _services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
-        self.view = None
+        self.view: View | None = None
+        self._show(env)
+
+    def _show(self, env: dict) -> None:
+        """The environment's display settings (morsec.kits.display): set_debug's log level, the one warning
+        naming those this run cannot show, and the viewer, if one was asked for."""
+        from morsec.kits import display
+        if env.get("debug"):
+            logging.getLogger("morsec").setLevel(logging.DEBUG)
+        shown_by = self.options.view or display.HEADLESS
+        if (line := display.warning(env, shown_by)) is not None:
+            logging.getLogger("morsec.display").warning(line)
+        log.debug("%d robots, %d components, %g Hz, %s", len(self.robots), len(self.components),
+                  self.clock.frequency, self.clock.strategy)
         if self.options.view:
             from morsec.runtime.view import open_view
             try:
                 self.view = open_view(self.options.view, self.model, self.data, self.options.bind,
-                                      self.options.view_port, env, self.keys)
+                                      self.options.view_port, env, self.keys, self.display_status)
             except BaseException:
                 self.close()
                 raise
+
+    def display_status(self, debug: bool) -> Status:
+        """What a viewer's overlays show: the time, the frames, and with `debug` (show_debug) each robot's
+        pose and each component's data, as MORSE listed the game properties marked for debugging."""
+        from morsec.runtime import view
+        rows: list[tuple[str, str]] = []
+        if debug:
+            for robot in self.robots:
+                pos, rot = robot.handle.pose()
+                yaw = float(np.arctan2(rot[1, 0], rot[0, 0]))
+                rows.append((robot.name, f"x {pos[0]:.2f}  y {pos[1]:.2f}  z {pos[2]:.2f}  yaw {yaw:.2f}"))
+            for comp in self.components:
+                shown = [f"{key} {text}" for key, value in comp.instance.local_data.items()
+                         if key != "timestamp" and (text := _shown(value)) is not None]
+                if shown:
+                    rows.append((comp.fqn, "  ".join(shown[:DEBUG_FIELDS])))
+        return view.Status(self.clock.elapsed, self.clock.frames, rows)
 
     # ---------------------------------------------------------------- construction
     def _robot(self, entry: RobotEntry) -> RobotInfo:
@@ -493,12 +528,15 @@ class Simulation:
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
+        if self.view is not None and self.view.paused:
+            lines.append(f"PAUSED (auto_start is false): in the viewer, {self.view.resume_hint}")
         out.write("\n".join(lines) + "\n")
         out.flush()
 
     def run(self, duration: float | None = None) -> None:
         next_poll = 0.0
         started = None
+        paused = False
         try:
             while not self.quitting:
                 if duration is not None and self.clock.elapsed >= duration - 1e-9:
@@ -520,6 +558,14 @@ class Simulation:
                         self.poller.poll(MAX_POLL_WAIT / 20)
                         self._flush()
                         continue
+                if self.view is not None and self.view.paused:  # the viewer's pause (space): no frame runs
+                    self.view.sync()
+                    self._pause(PAUSED_POLL)
+                    paused = True
+                    continue
+                if paused:  # the wall clock's pace from now: the paused time is not owed
+                    self.clock.restart()
+                    paused = False
                 if self.sync is not None and self.sync.engaged:
                     if not self.sync.take():
                         self.poller.poll(0.01)
@@ -770,3 +816,18 @@ def _services_of(obj) -> dict:
             if info is not None:
                 found[info.name] = info
     return found
+
+
+def _shown(value: Any) -> str | None:
+    """A data field as show_debug lists it: numbers, flags, short text and short vectors; None for the rest
+    (images, point clouds, nested records)."""
+    if isinstance(value, bool):
+        return str(value)
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return f"{float(value):.3g}"
+    if isinstance(value, str):
+        return value if len(value) <= 24 else value[:21] + "..."
+    if isinstance(value, (list, tuple, np.ndarray)) and 0 < len(value) <= 4 \
+            and all(isinstance(v, (int, float, np.integer, np.floating)) for v in value):
+        return "[" + ", ".join(f"{float(v):.3g}" for v in value) + "]"
+    return None

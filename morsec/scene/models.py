@@ -30,6 +30,7 @@ from morsec.constants import (
     TimeStrategy,
 )
 from morsec.errors import did_you_mean
+from morsec.kits.display import DEFAULT_CAMERA_SPEED, DEFAULT_CLIP_END, DEFAULT_SHADE, SHADES
 from morsec.middleware.registry import middlewares, service_middlewares
 from morsec.modifiers.registry import MODIFIERS as MODIFIER_TABLE
 
@@ -257,7 +258,8 @@ class CameraSpec(Strict):
     clip: Annotated[list[Positive], Field(min_length=2, max_length=2)] = Field(
         default_factory=lambda: [0.1, 100.0], description="set_camera_clip: near, far, m")
     focal: Positive = Field(20.0, description="set_camera_focal_length, mm (32 mm sensor width)")
-    speed: Positive = Field(2.0, description="set_camera_speed (viewer)")
+    speed: Positive = Field(DEFAULT_CAMERA_SPEED, description="set_camera_speed: MORSE's fly speed (no MuJoCo "
+                            "viewer has one)")
 
 
 class MultinodeSpec(Strict):
@@ -275,16 +277,19 @@ class StreamManagerSpec(Strict):
 
 
 class ViewportSpec(Strict):
-    shade: Literal["BOUNDBOX", "WIREFRAME", "SOLID", "TEXTURED", "MATERIAL", "RENDERED"] = Field(
-        "SOLID", description="viewport_shade: display mode")
-    clip_end: Positive = Field(1000.0, description="clip_end: farthest visible distance, m")
+    shade: Literal[tuple(SHADES)] = Field(  # type: ignore[valid-type]
+        DEFAULT_SHADE, description="viewport_shade: how the viewers and `morsec render` draw the scene "
+        "(see running.md's display settings)")
+    clip_end: Positive = Field(DEFAULT_CLIP_END, description="clip_end: Blender's 3D-view clipping, m; morsec "
+                               "clips at camera.clip")
 
 
 class EnvironmentBase(Strict):
     """Environment(name): the world, time, the viewer camera and global settings."""
 
     name: str = Field("empty", description="environment id: empty, sandbox, indoors-1/boxes, ...")
-    fastmode: bool = Field(False, description="Environment(..., fastmode=True): wireframe display")
+    fastmode: bool = Field(False, description="Environment(..., fastmode=True): wireframe display (as "
+                           "viewport.shade WIREFRAME)")
     gravity: Annotated[float, Field(ge=0, allow_inf_nan=False)] = Field(9.81, description="set_gravity, m/s^2")
     time: TimeSpec = Field(default_factory=TimeSpec, description="time strategy and main-loop frequency")
     camera: CameraSpec = Field(default_factory=CameraSpec, description="the viewer's camera")
@@ -297,15 +302,18 @@ class EnvironmentBase(Strict):
         default_factory=dict, description="configure_stream_manager")
     multinode: MultinodeSpec | None = Field(None, description="configure_multinode")
     seed: Annotated[int, Field(ge=0)] | None = Field(None, description="random seed for noise modifiers")
-    show_framerate: bool = Field(False, description="show_framerate: display the frame rate (viewer)")
-    show_physics: bool = Field(False, description="show_physics: display collision shapes (viewer)")
-    show_debug: bool = Field(False, description="show_debug_properties: display debug information (viewer)")
+    show_framerate: bool = Field(False, description="show_framerate: the viewers show the frame rate")
+    show_physics: bool = Field(False, description="show_physics: collision shapes and contacts in the viewers "
+                               "and `morsec render`")
+    show_debug: bool = Field(False, description="show_debug_properties: the viewers list each robot's pose and "
+                             "each component's data")
     viewport: ViewportSpec = Field(default_factory=ViewportSpec, description="set_viewport")
-    auto_start: bool = Field(True, description="auto_start: start the simulation when loaded")
-    fullscreen: bool = Field(False, description="fullscreen: full-screen viewer window")
+    auto_start: bool = Field(True, description="set_auto_start: false opens a viewer paused (space runs it)")
+    fullscreen: bool = Field(False, description="fullscreen: full-screen native viewer window")
     stereo: Literal["NONE", "STEREO", "DOME", "ANAGLYPH", "QUADBUFFERED", "ABOVEBELOW", "INTERLACED",
-                    "VINTERLACE", "SIDEBYSIDE"] = Field("NONE", description="set_stereo: stereo display mode")
-    debug: bool = Field(False, description="set_debug: verbose simulator logging")
+                    "VINTERLACE", "SIDEBYSIDE"] = Field(
+        "NONE", description="set_stereo: stereo display mode (SIDEBYSIDE: `morsec render` draws both eyes)")
+    debug: bool = Field(False, description="set_debug: morsec's log at DEBUG level")
     morse_only: dict[str, Any] = Field(
         default_factory=dict, description="MORSE settings with no MuJoCo meaning, recorded as given")
 

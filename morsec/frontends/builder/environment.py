@@ -163,11 +163,13 @@ class Environment(AbstractComponent):
         self._put("debug", value=bool(debug))
 
     def set_stereo(self, mode="ANAGLYPH", eye_separation=0.1, stereo="STEREO"):
-        """NONE, STEREO (with `mode`: ANAGLYPH, SIDEBYSIDE, ...) or DOME; recorded, no effect in morsec."""
+        """NONE, STEREO (with `mode`: ANAGLYPH, SIDEBYSIDE, ...) or DOME: `morsec render` draws SIDEBYSIDE;
+        a run names the modes it cannot show (morsec.kits.display)."""
         stereo = str(stereo).upper()
         self._put("stereo", value=str(mode).upper() if stereo == "STEREO" else stereo)
-        self._session.morse_only(None, "set_stereo", {"mode": mode, "eye_separation": eye_separation,
-                                                      "stereo": stereo}, "has no effect (MuJoCo's viewer is mono)")
+        if eye_separation != 0.1:
+            self._session.morse_only(None, "set_stereo", {"eye_separation": eye_separation},
+                                     "(eye_separation=) has no effect: MuJoCo's eyes are 6.8 cm apart")
 
     # ---- physics and time
 
