@@ -340,3 +340,76 @@ def test_a_static_tf_stream_records_where_the_component_is_on_its_robot(tmp_path
     assert (stream["parent_frame_id"], stream["frame_id"]) == ("base_link", "/robot/ptu/eye")
     assert (x, y, z) == pytest.approx((0.0, 0.1, 1.0)) and yaw == pytest.approx(math.pi / 2)
     assert (roll, pitch) == pytest.approx((0.0, 0.0))
+
+
+def test_nav_pr2_serves_the_navigation_topics(simulate, tmp_path):
+    """MORSE's NavPR2 with add_interface('ros'): its laser on /scan (181 rays, -90 to +90 degrees, 30 m), its
+    odometry on /odom, a Twist on /cmd_vel moving it holonomically, as ROS's navigation stack expects; the
+    laser measures a wall 3 m ahead coming closer; BasePR2's /joint_states beside them."""
+    import math
+    source = tmp_path / "nav_pr2.py"
+    source.write_text(textwrap.dedent("""
+        from morse.builder import *
+        pr2 = NavPR2(with_keyboard=False)
+        pr2.add_interface('ros')
+        wall = Cube('wall')
+        wall.scale = (0.1, 2.0, 1.0)
+        wall.translate(x=3.0, z=1.0)
+        env = Environment('empty')
+    """), encoding="utf-8")
+    simulate(source)
+
+    scan = echo("/scan")[0]
+    ahead = 3.0 - 0.1 - 0.275  # the wall's near face, from the laser 0.275 m ahead of the robot's origin
+    assert len(scan["ranges"]) == 181 and scan["range_max"] == pytest.approx(30.0)
+    assert (scan["angle_min"], scan["angle_increment"]) == (pytest.approx(-math.pi / 2), pytest.approx(math.pi / 180))
+    assert scan["ranges"][90] == pytest.approx(ahead, abs=0.01) and scan["ranges"][0] == pytest.approx(30.0)
+    odometry = echo("/odom")[0]
+    assert (odometry["header"]["frame_id"], odometry["child_frame_id"]) == ("/odom", "/base_footprint")
+    assert "torso_lift_joint" in echo("/joint_states")[0]["name"]
+
+    publish_once("/cmd_vel", "geometry_msgs/Twist", "{linear: {x: 0.5, y: 0.3}}")
+    deadline = time.monotonic() + 15
+    while (where := echo("/odom")[0]["pose"]["pose"]["position"])["x"] < 0.6:
+        assert time.monotonic() < deadline, f"the PR2 did not move forward: {where}"
+    publish_once("/cmd_vel", "geometry_msgs/Twist", "{}")
+    time.sleep(0.5)
+    where = echo("/odom")[0]["pose"]["pose"]["position"]
+    assert where["y"] / where["x"] == pytest.approx(0.6, abs=0.05)  # both at once: holonomic
+    assert echo("/scan")[0]["ranges"][90] == pytest.approx(ahead - where["x"], abs=0.01)
+
+
+def test_localized_pr2_broadcasts_its_pose_on_tf(simulate, tmp_path):
+    """MORSE's LocalizedPR2 with add_interface('ros'): the pose as the transform map -> base_link, read by
+    ROS's own tf listener (Debian's python3-tf) as ROS nodes read it, moving when /cmd_vel says so."""
+    source = tmp_path / "localized_pr2.py"
+    source.write_text(textwrap.dedent("""
+        from morse.builder import *
+        pr2 = LocalizedPR2()
+        pr2.translate(x=1.0, y=2.0)
+        pr2.add_interface('ros')
+        env = Environment('empty')
+    """), encoding="utf-8")
+    simulate(source)
+    listener = subprocess.run([SYSTEM_PYTHON, "-c", textwrap.dedent("""
+        import time, rospy, tf
+        from geometry_msgs.msg import Twist
+        rospy.init_node('pr2_tf_reader', disable_signals=True)
+        listener = tf.TransformListener()
+        listener.waitForTransform('map', 'base_link', rospy.Time(0), rospy.Duration(20))
+        print(*listener.lookupTransform('map', 'base_link', rospy.Time(0))[0])
+        command = rospy.Publisher('/cmd_vel', Twist, queue_size=1)
+        while command.get_num_connections() == 0: time.sleep(0.05)
+        go = Twist(); go.linear.x = 0.5
+        command.publish(go)
+        time.sleep(2.0)
+        command.publish(Twist())
+        time.sleep(0.5)
+        print(*listener.lookupTransform('map', 'base_link', rospy.Time(0))[0])
+    """)], capture_output=True, text=True, timeout=90)
+    assert listener.returncode == 0, listener.stderr
+    before, after = ([float(v) for v in line.split()] for line in listener.stdout.strip().splitlines())
+    assert before == pytest.approx([1.0, 2.0, 0.0], abs=0.01)
+    # 2 s of wall clock at 0.5 m/s, in best effort (simulated time keeps up with the wall clock unless the
+    # machine is loaded): forward, along x where it faces, and nowhere else
+    assert 0.3 < after[0] - before[0] < 1.1 and after[1:] == pytest.approx(before[1:], abs=0.01)

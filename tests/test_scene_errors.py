@@ -99,6 +99,9 @@ CASES = [
     ("unknown_component_property.scene.yaml", 7, 11,
      rf"robots\[0\]\.components\[0\]\.properties\.ControlTyp: unknown property 'ControlTyp' of actuator type "
      rf"'motion_vw' \(properties: {NAMES}\); did you mean 'ControlType'\?"),
+    ("unknown_without.scene.yaml", 4, 15,
+     r"robots\[0\]\.without\[0\]: robot type 'nav_pr2' carries no component 'keybord' to leave out; "
+     r"did you mean 'keyboard'\?"),
     # names
     ("duplicate_robot_names.scene.yaml", 5, 11,
      r"robots\[1\]\.name: duplicate name 'robot': robots and objects share one namespace; rename one of them"),

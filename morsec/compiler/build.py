@@ -26,7 +26,14 @@ from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import assign_services, assign_streams, middleware_view
 from morsec.compiler.mjcf import render_scene
 from morsec.compiler.urdf import expand_xacro, read_urdf
-from morsec.component.catalogue import Catalogue, is_builtin, level_class, modifier_class, type_lineage
+from morsec.component.catalogue import (
+    Catalogue,
+    declaring_folder,
+    is_builtin,
+    level_class,
+    modifier_class,
+    type_lineage,
+)
 from morsec.errors import SceneError, yaml_path
 from morsec.kits.geometry import euler_to_quat, matrix_to_euler, quat_to_matrix
 from morsec.kits.mjcf_names import belongs_to
@@ -58,7 +65,7 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str | bytes]:
     assets = Assets()
     for r, robot in enumerate(scene.robots):
         cls = cat.get("robots", robot.type)
-        xacro_file = cls.folder / cls.xacro
+        xacro_file = declaring_folder(cls, "xacro") / cls.xacro
         try:
             if not xacro_file.is_file():
                 raise SceneError(f"robot type {robot.type!r}: xacro file {cls.xacro!r} not found "

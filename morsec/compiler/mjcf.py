@@ -18,7 +18,7 @@ from markupsafe import Markup, escape
 from morsec import __version__
 from morsec.compiler.assets import Assets, asset_dir
 from morsec.compiler.urdf import Link, expand_xacro, read_urdf
-from morsec.component.catalogue import Catalogue
+from morsec.component.catalogue import Catalogue, declaring_folder
 from morsec.component.contract import Component, Environment, Prop
 from morsec.errors import SceneError
 from morsec.kits import mjcf_names
@@ -408,9 +408,7 @@ def device_links(cls, fqn: str) -> Link | None:
     name = getattr(cls, "xacro", None)
     if not name:
         return None
-    # the folder of the class that names the file: a subclass that keeps its parent's arm finds it there
-    owner = next(k for k in cls.__mro__ if "xacro" in vars(k))
-    path = Path(vars(owner).get("folder") or cls.folder) / name
+    path = declaring_folder(cls, "xacro") / name  # a subclass that keeps its parent's arm finds it there
     tree = copy.deepcopy(_device_tree(path, path.stat().st_mtime_ns if path.is_file() else 0))
     armature = getattr(cls, "joint_armature", {}) or {}
     for link in tree.walk():

@@ -305,6 +305,14 @@ def type_lineage(cls) -> tuple[str, ...]:
     return tuple(dict.fromkeys(ids))
 
 
+def declaring_folder(cls, attribute: str) -> Path:
+    """The folder of the class that declares `attribute` (a model file's name, `xacro`): a subclass in a
+    folder of its own that keeps its parent's model (NavPR2 of BasePR2) finds the file in the parent's folder.
+    The class's own folder when no catalogue class declares it (the contract's default)."""
+    owner = next((k for k in cls.__mro__ if attribute in vars(k) and "folder" in vars(k)), cls)
+    return Path(vars(owner).get("folder") or cls.folder)
+
+
 def component_class(kind: str, cid: str, start: Path | None = None) -> type[Component]:
     """The class of component `cid` of `kind` ("sensors", ...) on the search path, for a component.py that
     extends another one (a preset: `LaserScanner = component_class("sensors", "laser_scanner")`). Reuses

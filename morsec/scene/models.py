@@ -207,6 +207,8 @@ class RobotBase(Strict):
     color: Color | None = Field(None, description="set_color")
     locks: list[Lock] = Field(default_factory=list, description=LOCKS_DESCRIPTION)
     components: list[AnyComponent] = Field(default_factory=list, description="sensors and actuators")
+    without: list[Name] = Field(default_factory=list, description="components the robot type carries that this "
+                                "robot leaves out, by name (MORSE's NavPR2(with_keyboard=False): [keyboard])")
     tags: PropertyBag = Field(default_factory=dict, description=TAGS_DESCRIPTION)
 
 

@@ -7,7 +7,7 @@ from collections.abc import Callable
 from typing import Any, NoReturn
 
 from morsec.component.catalogue import Catalogue, modifier_class, type_lineage
-from morsec.errors import SceneError, yaml_path
+from morsec.errors import SceneError, did_you_mean, yaml_path
 from morsec.middleware.base import StreamRequest
 from morsec.middleware.registry import middleware as middleware_class
 from morsec.middleware.registry import service_middlewares
@@ -33,6 +33,8 @@ def add_robot_defaults(data: Any, cat: Catalogue) -> None:
         if not isinstance(components, list):
             continue
         named = {c.get("name") or c.get("type") for c in components if isinstance(c, dict)}
+        without = robot.get("without")
+        named |= set(without) if isinstance(without, list) and all(isinstance(n, str) for n in without) else set()
         components.extend(_scene_entry(copy.deepcopy(c)) for c in defaults if c["name"] not in named)
 
 
@@ -104,6 +106,7 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
     env_properties = scene.environment.properties
     for r, robot in enumerate(scene.robots):
         _check_tags(robot, cat.get("robots", robot.type), ("robots", r), fail)
+        _check_without(robot, cat.get("robots", robot.type), ("robots", r), fail)
         _resolve_children(robot.components, ("robots", r), robot.default_interface, cat, fail, env_properties)
         _check_robot_requirements(robot, ("robots", r), cat, fail)
 
@@ -178,6 +181,16 @@ def _check_available(middleware: str, path: tuple, fail) -> None:
     problem = middleware_class(middleware).unavailable()
     if problem:
         fail(path, problem)
+
+
+def _check_without(robot, cls, path: tuple, fail) -> None:
+    """`without` names components the robot type carries (default_components), nothing else."""
+    carried = [c["name"] for c in cls.default_components]
+    for k, name in enumerate(robot.without):
+        if name not in carried:
+            fail(path + ("without", k), f"robot type {cls.id!r} carries no component {name!r} to leave out"
+                 + ((did_you_mean(name, carried) or f" (it carries {', '.join(carried)})") if carried
+                    else " (it carries none)"))
 
 
 def _check_tags(entry, cls, path: tuple, fail) -> None:

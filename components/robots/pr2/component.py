@@ -16,6 +16,17 @@ _CONTROLLERS = (("torso", "torso_controller"), ("head", "head_traj_controller"),
                 ("r_arm", "r_arm_controller"))
 
 
+class DrivenPR2Builder:
+    """MORSE's builder of the PR2s it equipped to move, LocalizedPR2 and NavPR2: (name=None,
+    with_keyboard=True, show_laser=False); with_keyboard=False leaves the keyboard out, show_laser shows the
+    base laser's arc (NavPR2's `base_scan`; LocalizedPR2 has none)."""
+
+    def __init__(self, name=None, with_keyboard=True, show_laser=False):
+        super().__init__(name, _without=() if with_keyboard else ("keyboard",))
+        if show_laser and "base_scan" in vars(self):
+            self.base_scan.properties(Visible_arc=True)
+
+
 class BasePR2(Robot):
     """Willow Garage's PR2 with its armatures, MORSE's BasePR2: `torso` (pr2_torso: torso_lift_joint, 0 ..
     0.31 m), `head` (pr2_head: head_pan_joint, head_tilt_joint), `l_arm` and `r_arm` (pr2_l_arm, pr2_r_arm:
@@ -65,6 +76,15 @@ class BasePR2(Robot):
                 for prefix in ("", "/{robot}") for part, controller in _CONTROLLERS),
         },
     }
+
+    # what MORSE's LocalizedPR2 and NavPR2 (robots localized_pr2, nav_pr2) append to move the base: the
+    # holonomic motion, applied as a displacement every tick (MORSE's ControlType Position there: the
+    # keyboard's displacement and the motion's add up), and a keyboard; and their builder's arguments
+    drive_components: ClassVar[tuple[dict, ...]] = (
+        {"name": "motion", "type": "motion_xyw", "properties": {"ControlType": "Position"}},
+        {"name": "keyboard", "type": "keyboard"},
+    )
+    drive_builder: ClassVar[type] = DrivenPR2Builder
 
     class Properties(RobotProperties):
         GroundRobot: bool = True

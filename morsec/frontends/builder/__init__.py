@@ -30,6 +30,7 @@ from morsec.frontends.builder.components import (
     Actuator,
     ActuatorCreator,
     CatalogueProp,
+    CatalogueRobot,
     Component,
     ComponentCreator,
     Cone,
@@ -78,7 +79,7 @@ MORSE_ALIASES = {"VelodyneZB": "Velodyne",  # MORSE 1.1's name, kept by MORSE's 
 def catalogue_classes(cat: Catalogue) -> dict[str, type]:
     """One builder class per catalogue robot, sensor, actuator and prop, named by its builder_name."""
     classes: dict[str, type] = {}
-    bases = {"robots": Robot, "sensors": SensorCreator, "actuators": ActuatorCreator, "props": CatalogueProp}
+    bases = {"robots": CatalogueRobot, "sensors": SensorCreator, "actuators": ActuatorCreator, "props": CatalogueProp}
     for kind, base in bases.items():
         for cid, comp in sorted(cat.by_kind.get(kind, {}).items()):
             name = comp.builder_name or cid
@@ -86,22 +87,16 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
                 continue
             namespace = {"_type": cid, "_classpath": f"{kind}/{cid}:{comp.__name__}", "__module__": __name__,
                          "__doc__": comp.doc() or comp.short_descr or None, "__qualname__": name}
-            # MORSE's builder class's own arguments and methods (Joystick(index=), Sound.open), from the component
+            # MORSE's builder class's own arguments and methods (Joystick(index=), NavPR2(with_keyboard=),
+            # Sound.open), from the component
             mixin = getattr(comp, "builder_mixin", None)
-            if kind == "robots":
-                namespace["__init__"] = _robot_init
-            elif kind in ("sensors", "actuators") and not (mixin and "__init__" in vars(mixin)):
+            if kind in ("sensors", "actuators") and not (mixin and "__init__" in vars(mixin)):
                 namespace["__init__"] = _device_init(base)
             classes[name] = type(name, (mixin, base) if mixin else (base,), namespace)
     for alias, name in MORSE_ALIASES.items():
         if name in classes and alias not in classes:
             classes[alias] = classes[name]
     return classes
-
-
-def _robot_init(self, name=None, debug=True):
-    Robot.__init__(self, "", name)
-    self._add_default_components()
 
 
 def _device_init(base):

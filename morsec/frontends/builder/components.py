@@ -699,13 +699,14 @@ class Robot(AbstractComponent):
 
     # ---- the catalogue robot's own components (MORSE builder robots that append theirs in __init__)
 
-    def _add_default_components(self) -> None:
-        """The robot type's `default_components` (BasePR2's torso, head ...) as children, each an attribute of
-        the robot by its name (nested ones `<parent>_<name>`: MORSE's `pr2.torso_pose`, unless the entry
-        names its `attribute`: the Human's `human.joint_states`)."""
+    def _add_default_components(self, without: tuple[str, ...] = ()) -> None:
+        """The robot type's `default_components` (BasePR2's torso, head ...) but those named in `without`, as
+        children, each an attribute of the robot by its name (nested ones `<parent>_<name>`: MORSE's
+        `pr2.torso_pose`, unless the entry names its `attribute`: the Human's `human.joint_states`)."""
         cls = self._catalogue_class(self._type_name)
         for spec in getattr(cls, "default_components", ()) if cls else ():
-            self._default_child(self, spec, "")
+            if spec["name"] not in without:
+                self._default_child(self, spec, "")
 
     def _default_child(self, parent: AbstractComponent, spec: dict, prefix: str) -> None:
         child = Sensor(spec["type"])  # a catalogue sensor or actuator by id
@@ -849,6 +850,18 @@ class GroundRobot(Robot):
 
 class WheeledRobot(Robot):
     """A robot with wheels (MORSE's wheel-name properties come from the catalogue's description)."""
+
+
+class CatalogueRobot(Robot):
+    """Base of the catalogue's robot classes (ATRV(), BasePR2() ...): MORSE's `ATRV(name=None)`, with the robot
+    type's own components. A type whose MORSE class took more arguments (NavPR2(with_keyboard=False)) has a
+    `builder_mixin` with that __init__, which calls this one; `_without` names default components left out."""
+
+    def __init__(self, name=None, debug=True, *, _without: tuple[str, ...] = ()):
+        Robot.__init__(self, "", name)
+        self._add_default_components(_without)
+        if _without:
+            self._put("without", value=list(_without))
 
 
 class FakeRobot(Robot):
