@@ -55,25 +55,6 @@ ANALYSED = {
     "it expects 0.82 rad of turn where segway_vw, which MORSE ran, expects pi/2, and MORSE's Segway turns alike "
     "whichever way it faces. With `properties(FixTurningSpeed=0)` morsec ends at x 0.81, y 1.83, yaw 0.73 against "
     "its 0.75, 1.75, 0.75 (tests/components/test_actuators_drive.py)",
-    "base/stabilized_quadrirotor_testing.py": "the actuator is MORSE's model tick by tick (a test replays it); the "
-    "test's figures are that model at 62 frames per `publish; sleep(1); get()` cycle (x = 0.42, 1.90, 4.04, "
-    "6.18 m), morsec makes 61 (0.40, 1.84, 3.91, 5.98): MORSE's frame ran its actuators and sensors before it read "
-    "requests, so a client's reply to a frame's message or answer was read a frame later than morsec reads it, "
-    "and its sleep counted from there. That rule (a sleep counts from the frame after the one it arrived after) "
-    "passes this file 6/6, but the same rule gives vw_testing's `publish; sleep(3.1); publish(stop)` 187 frames "
-    "of motion, not 186, and the ATRV's turn friction, fitted at 186, then ends the v -2, w pi/2 turn at y "
-    "-1.061 (-1.273 +- 0.2); it also moves attitude_testing to 2.74999 (2.8 +- 0.05) and has "
-    "accelerometer_testing's `get()` after `publish; sleep(0.01)` read the frame after the kick. The ATRV's turn "
-    "friction must first be refitted to MORSE's frame count (a kinematic estimate: a share of 0.44 to 0.49 "
-    "instead of 1/3 fits both vw turns, by 5 mm)",
-    "base/waypoint_testing.py": "MORSE's request manager read one request of a client per frame, so `stop().result("
-    "); get_status().result(); sleep(0.2)` counted the sleep from three frames after the previous sleep's answer; "
-    "morsec answers at once and counts it from the loop's frame: the robot is read after 13 frames of coasting "
-    "(0.0378 m left to coast against 0.03 allowed). Counting a frame per round trip for the sleep that follows, "
-    "answering at once, passes it (4/4, with fixed_step giving the wall clock after `goto(...).result()` too; "
-    "branch timing-experiments), but commands still act at the loop's frame while the sleep counts from MORSE's: "
-    "pymorse's start-up requests push a test's first sleep frames past its first command (accelerometer_testing "
-    "0/2) and `rotate(...); sleep(1)` reads 0.534 rad for 0.5 +- 0.02 (armature_testing, 4 of 14 fail)",
 }
 
 
