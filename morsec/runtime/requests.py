@@ -71,6 +71,11 @@ class RequestManager:
     def is_running(self, request: Request) -> bool:
         return request in self.running.get(request.component, ())
 
+    def _pending_count(self, client: Any) -> int:
+        """The client's asynchronous requests running or waiting to start."""
+        waiting = sum(1 for entry in self.waiting if entry[1].client == client) if self.waiting else 0
+        return len(self.by_client.get(client, ())) + waiting
+
     def pending(self, request: Request) -> bool:
         """Whether an asynchronous request is not answered yet (running, or waiting to start)."""
         return self.is_running(request) or any(entry[1] is request for entry in self.waiting)
@@ -104,7 +109,7 @@ class RequestManager:
             return
         request.info = info
         if info.asynchronous:
-            if request.client is not None and len(self.by_client.get(request.client, ())) >= MAX_PENDING_REQUESTS:
+            if request.client is not None and self._pending_count(request.client) >= MAX_PENDING_REQUESTS:
                 request.reply(request.id, FAILED, "too many requests pending for this client "
                               f"({MAX_PENDING_REQUESTS}): wait for their answers or cancel some")
                 return
@@ -121,8 +126,8 @@ class RequestManager:
         request.reply(request.id, SUCCESS, result)
 
     def start_waiting(self, frames: int) -> None:
-        """At the end of the frame after `frames`... that is, after `frames` frames: start the asynchronous
-        requests that arrived before the frame that just ran (see `waiting`), in their order."""
+        """At the end of a frame, `frames` frames run: start the asynchronous requests that arrived before
+        that frame began (see `waiting`), in their order."""
         if not self.waiting or self.waiting[0][0] >= frames:
             return
         ready = [entry for entry in self.waiting if entry[0] < frames]
