@@ -412,19 +412,18 @@ def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_come
     client (READER_POLL); the wait is not taken out of the next frame's: it still comes a frame's time
     after the answer, so that a client calling `get()` once it has the answer gets it."""
     sim = launch(real_time_sim)
-    with sim.client() as client:
-        # a frame every DT / 4 of wall time: the sleep below, counted from the end of the frame after its request
-        # (MORSE's frame order), ends within READER_POLL of the connection made just before it
-        client.ok("time", "set_time_scale", 4.0)
-        frame = DT / 4
+    with sim.client() as client, sim.stream("robot.pose") as frames:
         for k in range(8):
-            time.sleep(k * frame / 8)  # at another moment between two frames each time
-            with sim.stream("robot.pose") as pose:  # a new client of a sensor stream
-                client.ok("time", "sleep", 0.01)
+            frames.drain()
+            sleep = client.send_request("time", "sleep", 0.01)  # ends at the end of the second frame from now
+            frames.json()  # the first of them
+            time.sleep(0.003 + k * 0.0008)  # then a new client of a sensor stream, less than READER_POLL before
+            with sim.stream("robot.pose") as pose:  # the sleep's end
+                client.response(sleep)
                 answered = time.monotonic()
                 pose.drain()  # the messages of the frame the sleep ended at
                 pose.json()
-                assert time.monotonic() - answered > 0.75 * frame, k
+                assert time.monotonic() - answered > 0.75 * DT, k
 
 
 def test_fixed_step_a_sleep_after_a_stream_command_counts_from_it(launch):
