@@ -41,6 +41,9 @@ SLEEP_HOLD_GRACE = 1.0
 # it, SLEEP_ORDER_WAIT s at most
 SLEEP_WITH_PREVIOUS = 0.1
 SLEEP_ORDER_WAIT = 0.5
+# MORSE's frame order (docs/running.md#time): a client's round trips since its last command, between two frames,
+# each count a frame for its next sleep (MORSE read a client's requests once a frame), this many at most
+ROUND_TRIPS_COUNTED = 6
 
 # values a request may put into the physics (refused beyond, before they reach MuJoCo)
 MAX_POSITION = 1e8  # m, or rad for joint angles: |coordinate| (Earth-scale: a geodetic teleport to the

@@ -33,7 +33,7 @@ class Harness:
     def step(self, frames: int = 1) -> None:
         for _ in range(frames):
             self.sim.frame()
-            self.sim.time_services.wake()
+            self.sim.answer()
 
     def run_for(self, seconds: float) -> None:
         self.step(int(round(seconds * self.sim.clock.frequency)))

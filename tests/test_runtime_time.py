@@ -163,6 +163,77 @@ def test_lockstep(launch):
         wait_until(lambda: client.ok("time", "now") > t0 + 0.5, timeout=10, message="free running after disconnect")
 
 
+# ------------------------------------------------------------------ MORSE's frame order, frame by frame
+def frame_order_sim(tmp: Path) -> Morsec:
+    """Lockstep (each line on the sync port: one frame): an ATRV driven by motion_vw, another by a waypoint
+    actuator (an asynchronous service), each with a pose stream."""
+    sync_port = free_port()
+    walker = robot("walker", pose_sensor(), {"name": "waypoint", "type": "waypoint", "streams": ["socket"],
+                                             "services": ["socket"]}, translate=[0.0, 5.0, 0.0])
+    sim = Morsec(scene_file(tmp, scene(robot(), walker, strategy="fixed_step", environment={
+        "stream_managers": {"socket": {"time_sync": True, "sync_port": sync_port}}}), "frame_order"), tmp)
+    sim.expected_sync_port = sync_port
+    return sim
+
+
+def test_what_a_client_sends_after_a_frame_acts_from_the_frame_after_the_next(launch):
+    """MORSE's frame order (docs/running.md#time), one frame at a time: what a client sends after a frame's
+    messages and answers is taken with the end of the next frame. A message to an actuator moves the robot
+    from the second frame on, a sleep of 3 frames ends 4 frames on, a component's asynchronous service starts
+    with the next frame's end, and each round trip since the client's last command puts its next sleep a
+    frame later."""
+    sim = launch(frame_order_sim)
+    with (sim.client() as client, LineSocket(sim.sync_port) as sync, sim.stream("robot.motion") as motion,
+          sim.stream("robot.pose") as pose, sim.stream("walker.pose") as walker_pose):
+        time.sleep(0.3)  # the sync client accepted: frames on its lines only
+
+        def frame() -> tuple[float, float]:
+            """One frame; the x of both robots after it."""
+            sync.send("\n")
+            return pose.json()["x"], walker_pose.json()["x"]
+
+        def frames_until_answered(request_id: str, most: int = 12) -> int:
+            for n in range(1, most + 1):
+                frame()
+                with contextlib.suppress(TimeoutError):
+                    client.response(request_id, timeout=0.2)
+                    return n
+            raise AssertionError(f"{request_id} not answered within {most} frames")
+
+        for _ in range(3):
+            x0, _ = frame()
+        motion.send('{"v": 1.0, "w": 0.0}\n')
+        time.sleep(0.2)  # read by the loop, between two frames
+        x1, _ = frame()
+        assert x1 == pytest.approx(x0, abs=1e-9)  # the frame after: not yet
+        x2, _ = frame()
+        assert x2 > x1 + 0.01  # the frame after the next: moving
+        motion.send('{"v": 0.0, "w": 0.0}\n')
+        for _ in range(30):
+            frame()
+
+        sleep = client.send_request("time", "sleep", 3 * DT)
+        time.sleep(0.2)
+        assert frames_until_answered(sleep) == 4  # counted from the end of the next frame
+
+        assert client.ok("robot.motion", "set_speed", 0.0, 0.0) is None  # a command, answered at once
+        client.ok("time", "now")  # round trips after it, with no frame in between: MORSE read them a frame
+        client.ok("time", "now")  # apart, and the sleep after them three frames after the command
+        sleep = client.send_request("time", "sleep", 3 * DT)
+        time.sleep(0.2)
+        assert frames_until_answered(sleep) == 7
+
+        _, w0 = frame()
+        goto = client.send_request("walker.waypoint", "goto", 3.0, 5.0, 0.0, 0.1, 1.0)
+        time.sleep(0.2)
+        _, w1 = frame()  # the goto starts at this frame's end
+        assert w1 == pytest.approx(w0, abs=1e-9)
+        _, w2 = frame()
+        assert w2 > w1 + 0.01
+        client.send(f"{goto} cancel\n")
+        assert client.response(goto)[1] == "PREEMPTED"
+
+
 # ------------------------------------------------------------------ fixed_step: clients pacing with time sleep
 def paced_sim(tmp: Path) -> Morsec:
     return Morsec(scene_file(tmp, scene(strategy="fixed_step"), "paced"), tmp)  # ATRV, pose, motion_vw
@@ -341,11 +412,14 @@ def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_come
     client (READER_POLL); the wait is not taken out of the next frame's: it still comes a frame's time
     after the answer, so that a client calling `get()` once it has the answer gets it."""
     sim = launch(real_time_sim)
-    with sim.client() as client:
+    with sim.client() as client, sim.stream("robot.pose") as frames:
         for k in range(8):
-            time.sleep(k * DT / 8)  # at another moment between two frames each time
-            with sim.stream("robot.pose") as pose:  # a new client of a sensor stream
-                client.ok("time", "sleep", 0.01)
+            frames.drain()
+            sleep = client.send_request("time", "sleep", 0.01)  # ends at the end of the second frame from now
+            frames.json()  # the first of them
+            time.sleep(0.003 + k * 0.0008)  # then a new client of a sensor stream, less than READER_POLL before
+            with sim.stream("robot.pose") as pose:  # the sleep's end
+                client.response(sleep)
                 answered = time.monotonic()
                 pose.drain()  # the messages of the frame the sleep ended at
                 pose.json()

@@ -65,16 +65,6 @@ ANALYSED = {
     "it expects 0.82 rad of turn where segway_vw, which MORSE ran, expects pi/2, and MORSE's Segway turns alike "
     "whichever way it faces. With `properties(FixTurningSpeed=0)` morsec ends at x 0.81, y 1.83, yaw 0.73 against "
     "its 0.75, 1.75, 0.75 (tests/components/test_actuators_drive.py)",
-    "base/stabilized_quadrirotor_testing.py": "the actuator is MORSE's model tick by tick (a test replays it); the "
-    "test's figures are that model with 62 frames per `publish; sleep(1); get()` cycle (x = 0.42, 1.90, 4.04, "
-    "6.18 m), morsec's loop makes 61 (0.40, 1.84, 3.91, 5.98; fixed_step 5.88): MORSE began a sleep after its "
-    "frame's actuators had run. Taking client input a frame later (62) passes it, but vw_testing's stop after "
-    "sleep(3.1) then lands a tick later, out of its tolerance with the ground friction fitted so far",
-    "base/waypoint_testing.py": "MORSE's request manager answered one request per frame, so `stop().result(); "
-    "get_status().result(); sleep(0.2)` read the robot after 15 frames of coasting, morsec's after 13 (0.0378 m "
-    "left to coast against 0.03 allowed). Answering once a frame passes it (tried) but makes every service round "
-    "trip wait for a frame, against issue 14's target of an echo server's speed; the way through is to count "
-    "MORSE's frame per request in the time a sleep starts at, answering at once",
 }
 
 

@@ -52,6 +52,8 @@ class RunContext:
     stream_closed: Callable[[Any], None] = field(default=lambda connection: None)
     # a client connected to a sensor stream: the answers to sleeps wait for its polling thread to see it
     reader_opened: Callable[[], None] = field(default=lambda: None)
+    # how many frames the loop has run: actuator streams stamp their messages with it (MORSE's frame order)
+    frames: Callable[[], int] = field(default=lambda: 0)
 
 
 class OutStream(Protocol):
@@ -62,7 +64,7 @@ class OutStream(Protocol):
 
 
 class InStream(Protocol):
-    def take(self) -> dict | None: ...  # the last complete message since the previous take
+    def take(self, frames: int) -> dict | None: ...  # the last message to apply at the frame after `frames`
     def close(self) -> None: ...
 
 

@@ -22,6 +22,7 @@ QUICKACK = getattr(socket, "TCP_QUICKACK", None)
 class Poller:
     def __init__(self):
         self.selector = selectors.DefaultSelector()
+        self.polls = 0  # how many polls read something: what arrives in one poll arrived together
 
     def register(self, sock: socket.socket, handler) -> None:
         self.selector.register(sock, selectors.EVENT_READ, handler)
@@ -35,7 +36,10 @@ class Poller:
     def poll(self, timeout: float = 0.0) -> None:
         if not self.selector.get_map():
             return
-        for key, _ in self.selector.select(timeout):
+        ready = self.selector.select(timeout)
+        if ready:
+            self.polls += 1
+        for key, _ in ready:
             key.data(key.fileobj)
 
     def close(self) -> None:

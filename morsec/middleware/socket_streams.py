@@ -81,21 +81,24 @@ class SocketStream(Server):
         super().__init__(poller, host, port, attempts=100 if hint_only else 1)
         self.component = component
         self.direction = direction
-        self.pending: dict[Connection, dict] = {}  # each client's last complete actuator message, not yet applied
-        self.fresh: set[Connection] = set()  # clients that connected since the actuator's last tick
+        # each client's complete actuator messages not yet applied, with the frame count at their arrival (the
+        # last of each frame's only): a message is applied from the second frame after it arrived (take)
+        self.pending: dict[Connection, list[tuple[int, dict]]] = {}
+        self.accepted_at: dict[Connection, int] = {}  # frame count when each client connected
         self.context = context if direction == "IN" else None  # told of clients opening, sending, closing
+        self.frames = context.frames if context is not None else (lambda: 0)
         self.reader_opened = context.reader_opened if context is not None and direction == "OUT" else None
 
     def accepted(self, conn: Connection) -> None:
         if self.context is not None:
-            self.fresh.add(conn)
+            self.accepted_at[conn] = self.frames()
             self.context.stream_opened(conn)
         elif self.reader_opened is not None:
             self.reader_opened()
 
     def dropped(self, conn: Connection) -> None:
         self.pending.pop(conn, None)
-        self.fresh.discard(conn)
+        self.accepted_at.pop(conn, None)
         if self.context is not None:
             self.context.stream_closed(conn)
 
@@ -120,18 +123,27 @@ class SocketStream(Server):
         if not isinstance(message, dict):
             log.warning("%s: ignored a message that is not a JSON object: %.80r", self.component, last)
             return
-        self.pending[conn] = message
+        stamp = self.frames()
+        queue = self.pending.setdefault(conn, [])
+        if queue and queue[-1][0] == stamp:
+            queue.pop()  # of the messages that arrived between the same two frames, the last one counts
+        queue.append((stamp, message))
 
-    def take(self) -> dict | None:
-        """The last complete message of the clients, at a tick of the actuator. A client that connected since
-        the previous tick is read from the next one on, as MORSE's socket reader did: it accepted a new client
-        at one tick and read it at the next (`motion = sim.robot.motion; motion.publish(cmd)` applies a frame
-        after the commands of a client that was connected already)."""
+    def take(self, frames: int) -> dict | None:
+        """At a tick of the actuator, in the frame after `frames` frames: the last message of the clients that
+        arrived before the previous frame ran (MORSE's frame order, docs/running.md#time: what a client sends
+        after a frame's messages and answers is read at the next frame's logic, and acts from the frame after).
+        A client that connected meanwhile is read a frame later still, as MORSE's socket reader accepted a
+        new client at one tick and read it at the next (`motion = sim.robot.motion; motion.publish(cmd)`)."""
         message = None
         for conn in self.clients:  # in the order they connected: the last one read has the last word
-            if conn not in self.fresh and conn in self.pending:
-                message = self.pending.pop(conn)
-        self.fresh.clear()
+            queue = self.pending.get(conn)
+            if not queue or self.accepted_at.get(conn, -1) + 1 >= frames:
+                continue
+            while queue and queue[0][0] < frames:
+                message = queue.pop(0)[1]
+            if not queue:
+                del self.pending[conn]
         return message
 
     @property

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from morsec.component.services import FAILED, PREEMPTED, SUCCESS, Request, ServiceInfo
-from morsec.constants import MAX_PENDING_REQUESTS
+from morsec.constants import MAX_PENDING_REQUESTS, PSEUDO_COMPONENTS
 
 log = logging.getLogger("morsec.services")
 
@@ -42,6 +42,12 @@ class RequestManager:
         self.current: Request | None = None  # the request being dispatched (for async services)
         self.on_request: list[Callable[[Request], None]] = []  # told of each request, before it is handled
         self.on_leave: list[Callable[[Any], None]] = []  # told of each client that went away
+        self.on_complete: list[Callable[[Request], None]] = []  # told of each asynchronous request answered
+        # MORSE's frame order (docs/running.md#time): a component's asynchronous service starts at the end of the
+        # frame after the one it arrived after, and so acts from the next; `frames` (the loop's frame count) set,
+        # such requests wait in `waiting` (frame count at arrival, request, the component, its method)
+        self.frames: Callable[[], int] | None = None
+        self.waiting: list[tuple[int, Request, Exposed, Any]] = []
         self.last_request = float("-inf")  # wall clock (perf_counter) of the last request handled
         # (id(owner), attribute) -> (owner, the method's signature): inspect.signature costs more than the rest
         # of a request, so once per method (the owner kept: its id stays its own)
@@ -64,6 +70,15 @@ class RequestManager:
 
     def is_running(self, request: Request) -> bool:
         return request in self.running.get(request.component, ())
+
+    def _pending_count(self, client: Any) -> int:
+        """The client's asynchronous requests running or waiting to start."""
+        waiting = sum(1 for entry in self.waiting if entry[1].client == client) if self.waiting else 0
+        return len(self.by_client.get(client, ())) + waiting
+
+    def pending(self, request: Request) -> bool:
+        """Whether an asynchronous request is not answered yet (running, or waiting to start)."""
+        return self.is_running(request) or any(entry[1] is request for entry in self.waiting)
 
     def handle(self, request: Request) -> None:
         self.last_request = time.perf_counter()
@@ -94,9 +109,12 @@ class RequestManager:
             return
         request.info = info
         if info.asynchronous:
-            if request.client is not None and len(self.by_client.get(request.client, ())) >= MAX_PENDING_REQUESTS:
+            if request.client is not None and self._pending_count(request.client) >= MAX_PENDING_REQUESTS:
                 request.reply(request.id, FAILED, "too many requests pending for this client "
                               f"({MAX_PENDING_REQUESTS}): wait for their answers or cancel some")
+                return
+            if self.frames is not None and request.component not in PSEUDO_COMPONENTS:
+                self.waiting.append((self.frames(), request, exposed, method))
                 return
             self._start_async(exposed, request, method)
             return
@@ -106,6 +124,16 @@ class RequestManager:
             request.reply(request.id, FAILED, _message(err))
             return
         request.reply(request.id, SUCCESS, result)
+
+    def start_waiting(self, frames: int) -> None:
+        """At the end of a frame, `frames` frames run: start the asynchronous requests that arrived before
+        that frame began (see `waiting`), in their order."""
+        if not self.waiting or self.waiting[0][0] >= frames:
+            return
+        ready = [entry for entry in self.waiting if entry[0] < frames]
+        self.waiting = [entry for entry in self.waiting if entry[0] >= frames]
+        for _, request, exposed, method in ready:
+            self._start_async(exposed, request, method)
 
     def _start_async(self, exposed: Exposed, request: Request, method) -> None:
         running = self.running.setdefault(request.component, {})
@@ -152,8 +180,16 @@ class RequestManager:
             return
         self._finish(request)
         request.reply(request.id, status, result)
+        for listener in self.on_complete:
+            listener(request)
 
     def cancel(self, client: Any, request_id: str) -> None:
+        for entry in self.waiting:
+            request = entry[1]
+            if request.client == client and request.id == request_id:  # not started yet: nothing to interrupt
+                self.waiting.remove(entry)
+                request.reply(request.id, PREEMPTED, None)
+                return
         for request in list(self.by_client.get(client, ())):
             if request.id == request_id:
                 self._abandon([request])
@@ -163,6 +199,7 @@ class RequestManager:
 
     def drop_client(self, client: Any) -> None:
         """A client went away: its pending requests can no longer be answered."""
+        self.waiting = [entry for entry in self.waiting if entry[1].client != client]
         self._abandon(list(self.by_client.get(client, ())))
         for listener in self.on_leave:
             listener(client)

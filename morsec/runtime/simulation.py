@@ -211,6 +211,9 @@ class Simulation:
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
 
         self.time_services = TimeServices(self)
+        self.requests.on_request.append(self.time_services.arrived)
+        self.requests.frames = lambda: self.clock.frames
+        self.requests.on_complete.append(self.async_answered)
         if self.hold is not None:  # fixed_step: commands start real-time phases, numbered requests
             self.requests.on_request.append(self.request_arrived)
         if self.options.wait_for_client:
@@ -301,7 +304,8 @@ class Simulation:
         opts = self.options
         context = RunContext(self.poller, self.requests, opts.bind, Path(opts.output_dir), opts.port_base,
                              opts.service_port, stream_opened=self.stream_opened, stream_heard=self.stream_heard,
-                             stream_closed=self.stream_closed, reader_opened=self.reader_opened, now=self.clock.now)
+                             stream_closed=self.stream_closed, reader_opened=self.reader_opened, now=self.clock.now,
+                             frames=lambda: self.clock.frames)
         overlays = [(c.fqn, o) for c in manifest.components for o in c.overlays]
         used = sorted({s.middleware for s in manifest.streams} | {s.middleware for s in manifest.services}
                       | {o.middleware for _, o in overlays})
@@ -421,6 +425,14 @@ class Simulation:
         follows the wall clock (SleepHold); not while a lockstep client paces the loop."""
         if self.hold is not None and not (self.sync is not None and self.sync.engaged):
             self.hold.arm(request.client)
+
+    def async_answered(self, request) -> None:
+        """An asynchronous request was answered (a waypoint reached ...): in fixed_step, a client with nothing
+        else running has the wall clock until its next sleep, as after a sleep (`goto(...).result(); goto(...);
+        sleep(1)`: the robot does not coast on for hundreds of frames in between)."""
+        if (request.component not in PSEUDO_COMPONENTS and not self.requests.by_client.get(request.client)
+                and not self.time_services.sleeping.get(request.client)):
+            self.sleep_ended(request)
 
     def sleep_started(self, request) -> None:
         if self.hold is not None:
@@ -587,7 +599,7 @@ class Simulation:
                     self._pause(gap)
                     if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
                         self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
-                self.time_services.wake()
+                self.answer()
                 self._flush()
                 self._wait(self._delay())
         finally:
@@ -623,6 +635,12 @@ class Simulation:
         self.step()
         self._send_sensor_messages()
         self._flush()
+
+    def answer(self) -> None:
+        """The end of a frame, after its messages: the sleeps that ended at it answered, the components'
+        asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time)."""
+        self.time_services.wake()
+        self.requests.start_waiting(self.clock.frames)
 
     def step(self) -> None:
         m, d = self.model, self.data
@@ -684,7 +702,7 @@ class Simulation:
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
         for stream in comp.in_streams:
-            received = stream.take()
+            received = stream.take(self.clock.frames)
             if received is not None:
                 message = received
         try:

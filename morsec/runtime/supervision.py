@@ -13,7 +13,13 @@ import mujoco
 import numpy as np
 
 from morsec.component.services import async_service, service
-from morsec.constants import MAX_POSITION, PSEUDO_COMPONENTS, SLEEP_ORDER_WAIT, SLEEP_WITH_PREVIOUS
+from morsec.constants import (
+    MAX_POSITION,
+    PSEUDO_COMPONENTS,
+    ROUND_TRIPS_COUNTED,
+    SLEEP_ORDER_WAIT,
+    SLEEP_WITH_PREVIOUS,
+)
 from morsec.kits.bounds import bounded
 from morsec.kits.geometry import euler_to_quat, quat_to_matrix
 from morsec.runtime.clock import Numbering, request_number
@@ -155,6 +161,7 @@ class TimeServices:
         self.deferred: dict[Any, list] = {}  # client -> [(number, seconds, request, wall deadline)] not started
         self.woke: dict[Any, float] = {}  # client -> when (simulated s) a sleep of it last ended (numbered ones)
         self.first: dict[Any, float] = {}  # client -> when (simulated s) its first request came: no sleep counts before
+        self.trips: dict[Any, _Trips] = {}  # client -> its round trips since its last command, between two frames
 
     def interrupt(self) -> None:
         pass
@@ -216,11 +223,47 @@ class TimeServices:
             return None
         return max(sim.last_stream_input, self.woke.get(client, sim.last_stream_input))
 
+    def arrived(self, request) -> None:
+        """A request arrived (both strategies, before it is handled). MORSE read a client's socket once a frame:
+        a request the client sent after the answer to its previous one was read a frame later. morsec answers
+        at once, so the frames a client's round trips took are counted instead: from its last command (a
+        component's service; the frames before it do not move what the command does), each request read after
+        the previous one was answered, with no frame run in between, counts one (ROUND_TRIPS_COUNTED at most),
+        and the client's next sleep starts that many frames later (`stop().result(); get_status().result();
+        sleep(0.2)` sleeps from two frames after the stop, as MORSE's)."""
+        client = request.client
+        if client is None:
+            return
+        frames, poll = self.sim.clock.frames, self.sim.poller.polls
+        trips = self.trips.get(client)
+        if trips is None or trips.frames != frames:
+            trips = self.trips[client] = _Trips(frames)
+        elif (trips.since is not None and poll != trips.poll and trips.last is not None
+              and not self.sim.requests.pending(trips.last)):
+            trips.count = min(trips.count + 1, ROUND_TRIPS_COUNTED)
+        if request.component not in PSEUDO_COMPONENTS:
+            trips.count, trips.since = 0, _time.perf_counter()
+        trips.poll, trips.last = poll, request
+
+    def _round_trips(self, client) -> int:
+        """The frames the client's round trips since its last command took in MORSE (see arrived); none once a
+        frame ran, or after a message to an actuator stream (a command too, whose sender cannot be told)."""
+        trips = self.trips.get(client)
+        if (trips is None or trips.since is None or trips.frames != self.sim.clock.frames
+                or self.sim.last_stream_input_wall > trips.since):
+            return 0
+        return trips.count
+
     def _start(self, request, delay: float, since: float | None = None) -> None:
-        """The sleep counts from `since` (simulated s: when the request before it arrived), else from now."""
+        """The sleep counts from the end of the frame after `since` (simulated s: when the request before it
+        arrived), else after now: MORSE read a request at the logic of the frame after the messages and answers
+        a client replies to, and set its alarm from that frame's time (docs/running.md#time). The alarm rings
+        at the first frame after that one whose time is past it, within half a frame (MORSE's time_isafter)."""
         self.sim.sleep_started(request)
-        deadline = (self.sim.clock.elapsed if since is None else since) + max(0.0, delay)
-        heapq.heappush(self.sleepers, (deadline, next(self.order), request))
+        dt = self.sim.clock.dt
+        read = (self.sim.clock.elapsed if since is None else since) + dt * (1 + self._round_trips(request.client))
+        due = read + max(dt / 2, max(0.0, delay) - dt / 2)  # answered at the end of the first frame past `due`
+        heapq.heappush(self.sleepers, (due, next(self.order), request))
         self.wake()
 
     def heard(self, request) -> bool:
@@ -265,7 +308,7 @@ class TimeServices:
 
     def ending(self) -> bool:
         """Whether a sleep ends at this frame (its answer then leaves after the frame's wait)."""
-        return bool(self.sleepers) and self.sleepers[0][0] <= self.sim.clock.elapsed + 1e-9
+        return bool(self.sleepers) and self.sleepers[0][0] < self.sim.clock.elapsed
 
     def wake(self) -> None:
         """Answer the sleeps whose time has come."""
@@ -274,8 +317,8 @@ class TimeServices:
             for client in [c for c, waiting in self.deferred.items() if min(e[3] for e in waiting) <= now]:
                 self._unnumbered(client)
         sleepers = self.sleepers
-        due = self.sim.clock.elapsed + 1e-9
-        while sleepers and sleepers[0][0] <= due:
+        now = self.sim.clock.elapsed
+        while sleepers and sleepers[0][0] < now:
             request = heapq.heappop(sleepers)[2]
             if self.sim.requests.is_running(request):
                 self.sim.requests.complete("time", "SUCCESS", None, request)
@@ -318,9 +361,21 @@ class TimeServices:
         self.deferred.pop(client, None)
         self.woke.pop(client, None)
         self.first.pop(client, None)
+        self.trips.pop(client, None)
 
 
 _UNSEEN: Any = object()
+
+
+class _Trips:
+    """A client's requests between two frames (TimeServices.arrived)."""
+
+    def __init__(self, frames: int):
+        self.frames = frames  # the frame count they came after
+        self.count = 0  # round trips since the last command
+        self.since: float | None = None  # wall clock of the last command; None: none in this window
+        self.poll = -1  # the poll that read the last request
+        self.last = None  # the last request
 
 
 class Communication:

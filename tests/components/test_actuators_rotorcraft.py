@@ -142,6 +142,7 @@ def test_rotorcraft_waypoint_goto_answers_arrived_and_can_be_preempted(quad, tmp
         first = client.send("quad.motion", "goto", 5.0, 0.0, 2.0, 0.0)
         h.run_for(0.5)
         second = client.send("quad.motion", "goto", -1.0, 1.0, 2.0, 0.0, 0.3)
+        h.step()  # an asynchronous service starts with the end of the next frame (MORSE's frame order)
         assert client.replies[first] == ("PREEMPTED", None)
         h.run_for(10.0)
         assert client.replies[second] == ("SUCCESS", "Arrived")

@@ -107,9 +107,10 @@ def test_set_rotations_reaches_the_angles(kuka):
 @pytest.mark.parametrize("speed", [None, 0.4])
 def test_rotate_at_the_given_speed(kuka, speed):
     client = kuka.client()
-    start = kuka.time
     rid = client.send("robot.arm", "rotate", "kuka_1", 0.8, speed) if speed else \
         client.send("robot.arm", "rotate", "kuka_1", 0.8)
+    kuka.step()  # an asynchronous service starts with the end of the next frame (MORSE's frame order)
+    start = kuka.time
     kuka.run_for(0.5)
     expected_speed = speed or 0.8  # RotationSpeed
     assert kuka.call("robot.arm.pose", "get_joint", "kuka_1") == pytest.approx(0.5 * expected_speed, abs=0.01)
@@ -126,6 +127,7 @@ def test_joint_moves_at_exactly_its_speed(kuka):
     pushes on) nor behind."""
     client = kuka.client()
     client.send("robot.arm", "rotate", "kuka_2", 1.0, 0.5)
+    kuka.step()  # an asynchronous service starts with the end of the next frame (MORSE's frame order)
     for t in (0.5, 1.0, 1.5):
         kuka.run_for(0.5)
         assert kuka.call("robot.arm.pose", "get_joint", "kuka_2") == pytest.approx(0.5 * t, abs=0.002)
@@ -133,10 +135,11 @@ def test_joint_moves_at_exactly_its_speed(kuka):
 
 def test_trajectory_timing(kuka):
     client = kuka.client()
-    start = kuka.time
     points = [{"positions": [0.4, 0.6, 0.0, -0.6], "time_from_start": 1.0},
               {"positions": [0.0, 0.3, 0.2, -1.0, 0.1, 0.2, 0.3], "time_from_start": 2.0}]
     rid = client.send("robot.arm", "trajectory", {"points": points})
+    kuka.step()  # an asynchronous service starts with the end of the next frame (MORSE's frame order)
+    start = kuka.time
     kuka.run_for(0.5)
     np.testing.assert_allclose(state(kuka)[:4], [0.2, 0.3, 0.0, -0.3], atol=0.02)  # half way to the first
     kuka.run_for(0.5)
@@ -145,6 +148,7 @@ def test_trajectory_timing(kuka):
     assert status == "SUCCESS" and at - start == pytest.approx(2.0, abs=0.1)
     assert np.all(np.abs(state(kuka) - points[1]["positions"]) < 0.01)
     bad = client.send("robot.arm", "trajectory", {"points": [{"positions": [0.1]}]})
+    kuka.step()
     assert client.replies[bad][0] == "FAILED" and "time_from_start" in client.replies[bad][1]
 
 

@@ -120,6 +120,7 @@ def test_cancel_stops_where_it_is_and_a_new_target_preempts(tmp_path):
         first = client.send("robot.ptu", "set_pan_tilt", 2.0, 0.0)
         sim.run_for(0.5)
         second = client.send("robot.ptu", "set_pan_tilt", -0.3, 0.2)
+        sim.step()  # an asynchronous service starts with the end of the next frame (MORSE's frame order)
         assert client.replies[first][0] == "PREEMPTED"
         sim.run_for(0.3)
         client.cancel(second)
