@@ -11,7 +11,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mujoco
 import numpy as np
@@ -28,6 +28,9 @@ from morsec.runtime.requests import RequestManager
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
+
+if TYPE_CHECKING:  # imported only when a run asks for it (--foxglove)
+    from morsec.runtime.foxglove.server import FoxgloveServer
 
 log = logging.getLogger("morsec.runtime")
 
@@ -217,7 +220,7 @@ class Simulation:
             self.requests.expose(name, obj, _services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
-        self.foxglove = None
+        self.foxglove: FoxgloveServer | None = None
         if self.options.foxglove is not None:
             try:
                 self._open_foxglove(manifest, build_dir.name)
@@ -323,12 +326,12 @@ class Simulation:
             raise MorsecError("--foxglove needs the foxglove-sdk package: pip install foxglove-sdk (or "
                               "pip install 'morsec[foxglove]')") from None
         assert self.options.foxglove is not None
-        self.foxglove = FoxgloveServer(self.model, self.options.bind, self.options.foxglove, f"morsec {name}")
+        self.foxglove = server = FoxgloveServer(self.model, self.options.bind, self.options.foxglove, f"morsec {name}")
         for entry in manifest.components:
             comp = self.by_name[entry.fqn]
             if comp.kind == "actuator" and not comp.in_streams:
                 continue  # nothing reaches it from outside
-            streams = self.foxglove.streams_for(entry.fqn, type(comp.instance), entry.level, comp.instance.properties)
+            streams = server.streams_for(entry.fqn, type(comp.instance), entry.level, comp.instance.properties)
             (comp.out_streams if comp.kind == "sensor" else comp.echoes).extend(streams)
 
     def _scene_objects(self) -> list[SceneObject]:
@@ -728,8 +731,9 @@ class Simulation:
         for mw in getattr(self, "middlewares", {}).values():
             mw.close()
         self.middlewares = {}
-        if getattr(self, "foxglove", None) is not None:
-            self.foxglove.close()
+        foxglove = getattr(self, "foxglove", None)
+        if foxglove is not None:
+            foxglove.close()
             self.foxglove = None
         self.poller.close()
 

@@ -9,7 +9,7 @@ import time
 
 import foxglove
 from foxglove.channels import FrameTransformsChannel, SceneUpdateChannel
-from foxglove.websocket import Capability
+from foxglove.websocket import Capability, ServerListener
 
 from morsec.errors import RuntimeFailure
 from morsec.runtime.foxglove.streams import FoxgloveStream, nanoseconds, streams_for
@@ -20,7 +20,7 @@ SCENE_TOPIC = "/scene"
 WORLD_RATE = 50.0  # transforms and time per wall-clock second, at most (a fixed_step loop runs far faster)
 
 
-class _Subscriptions:
+class _Subscriptions(ServerListener):
     """foxglove-sdk's server listener: notes, from the server's thread, that a client subscribed to /scene."""
 
     def __init__(self):
@@ -39,7 +39,7 @@ class FoxgloveServer:
             self.server = foxglove.start_server(name=name, host=bind, port=port, capabilities=[Capability.Time],
                                                 server_listener=self.subscriptions, context=self.context)
         except RuntimeError as err:  # FoxgloveError: Failed to bind port: Address already in use (os error 98)
-            reason = str(err).split(": ", 1)[-1]
+            reason = str(err).rsplit(": ", 1)[-1]
             raise RuntimeFailure(f"--foxglove: cannot serve on {bind}:{port}: {reason} (--foxglove-port picks "
                                  "another port, 0 one the OS picks)") from None
         self.bind = bind
@@ -75,6 +75,8 @@ class FoxgloveServer:
             self.scene.log(self.geometry.message(seconds), log_time=nanoseconds(seconds))
 
     def close(self) -> None:
-        for channel in (*self.streams, self.tf, self.scene):
-            channel.close()
+        for stream in self.streams:
+            stream.close()
+        self.tf.close()
+        self.scene.close()
         self.server.stop()

@@ -7,6 +7,7 @@ spheres), ellipsoids, planes (a thin box) and meshes (binary STL, bounding box b
 from __future__ import annotations
 
 import struct
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -77,24 +78,36 @@ class BodyFrames:
             for c, p, t, q in zip(self.child.tolist(), parent, translation.tolist(), rotation.tolist())])
 
 
-def geom_color(model, g: int) -> Color:
+@dataclass(frozen=True)
+class Shape:
+    """One primitive of a body's entity, in the body's frame: a cube, sphere or cylinder of `size` (full
+    extents, m; a cylinder's axis is its z), or a model (`data`: binary STL)."""
+
+    kind: str  # "cube" | "sphere" | "cylinder" | "model"
+    position: tuple[float, float, float]
+    quat: tuple[float, float, float, float]  # w, x, y, z
+    size: tuple[float, float, float]
+    rgba: tuple[float, float, float, float]
+    data: bytes = b""
+
+
+def geom_rgba(model, g: int) -> tuple[float, float, float, float]:
     rgba = tuple(float(v) for v in model.geom_rgba[g])
     matid = int(model.geom_matid[g])
     if matid >= 0 and np.allclose(rgba, DEFAULT_RGBA):
         rgba = tuple(float(v) for v in model.mat_rgba[matid])
-    return Color(r=rgba[0], g=rgba[1], b=rgba[2], a=rgba[3])
-
-
-def _pose(pos, quat) -> Pose:
-    return Pose(position=Vector3(x=float(pos[0]), y=float(pos[1]), z=float(pos[2])),
-                orientation=Quaternion(x=float(quat[1]), y=float(quat[2]), z=float(quat[3]), w=float(quat[0])))
+    return rgba  # type: ignore[return-value]
 
 
 def _shifted(pos, quat, along_z: float) -> np.ndarray:
     """A point `along_z` on the geom's own z axis, in its body's frame."""
-    w, x, y, z = quat
-    axis = np.array([2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)])
-    return np.asarray(pos) + along_z * axis
+    return np.asarray(pos, float) + _rotate(quat, (0.0, 0.0, along_z))
+
+
+def _rotate(quat, v) -> np.ndarray:
+    out = np.zeros(3)
+    mujoco.mju_rotVecQuat(out, np.asarray(v, float), np.asarray(quat, float))
+    return out
 
 
 def stl(vertices: np.ndarray, faces: np.ndarray) -> bytes:
@@ -104,86 +117,81 @@ def stl(vertices: np.ndarray, faces: np.ndarray) -> bytes:
     return b"morsec mesh".ljust(80, b" ") + struct.pack("<I", len(faces)) + triangles.tobytes()
 
 
-class Primitives:
-    """The primitives of one body's entity."""
-
-    def __init__(self):
-        self.cubes: list = []
-        self.spheres: list = []
-        self.cylinders: list = []
-        self.models: list = []
-
-    def __bool__(self) -> bool:
-        return bool(self.cubes or self.spheres or self.cylinders or self.models)
+G = mujoco.mjtGeom
 
 
-def add_geom(model, g: int, into: Primitives) -> None:
+def geom_shapes(model, g: int) -> list[Shape]:
+    """What geom `g` is drawn as; nothing for a height field or an SDF."""
     kind = int(model.geom_type[g])
-    size = model.geom_size[g]
+    size = [float(v) for v in model.geom_size[g]]
     pos, quat = model.geom_pos[g], model.geom_quat[g]
-    color = geom_color(model, g)
-    G = mujoco.mjtGeom
+
+    def shape(what: str, extents, at=pos, data: bytes = b"") -> Shape:
+        return Shape(what, tuple(float(v) for v in at), tuple(float(v) for v in quat),  # type: ignore[arg-type]
+                     tuple(float(v) for v in extents), geom_rgba(model, g), data)  # type: ignore[arg-type]
+
     if kind == G.mjGEOM_BOX:
-        into.cubes.append(CubePrimitive(pose=_pose(pos, quat), size=Vector3(x=2 * size[0], y=2 * size[1],
-                                                                             z=2 * size[2]), color=color))
-    elif kind == G.mjGEOM_SPHERE:
-        d = 2 * float(size[0])
-        into.spheres.append(SpherePrimitive(pose=_pose(pos, quat), size=Vector3(x=d, y=d, z=d), color=color))
-    elif kind == G.mjGEOM_ELLIPSOID:
-        into.spheres.append(SpherePrimitive(pose=_pose(pos, quat), size=Vector3(x=2 * size[0], y=2 * size[1],
-                                                                                 z=2 * size[2]), color=color))
-    elif kind == G.mjGEOM_CYLINDER:
-        d = 2 * float(size[0])
-        into.cylinders.append(CylinderPrimitive(pose=_pose(pos, quat), size=Vector3(x=d, y=d, z=2 * size[1]),
-                                                bottom_scale=1.0, top_scale=1.0, color=color))
-    elif kind == G.mjGEOM_CAPSULE:
-        d, half = 2 * float(size[0]), float(size[1])
-        into.cylinders.append(CylinderPrimitive(pose=_pose(pos, quat), size=Vector3(x=d, y=d, z=2 * half),
-                                                bottom_scale=1.0, top_scale=1.0, color=color))
-        for end in (-half, half):
-            into.spheres.append(SpherePrimitive(pose=_pose(_shifted(pos, quat, end), quat),
-                                                size=Vector3(x=d, y=d, z=d), color=color))
-    elif kind == G.mjGEOM_PLANE:
-        sx, sy = (2 * float(s) if s > 0 else PLANE_SIZE for s in size[:2])
-        into.cubes.append(CubePrimitive(pose=_pose(_shifted(pos, quat, -PLANE_THICKNESS / 2), quat),
-                                        size=Vector3(x=sx, y=sy, z=PLANE_THICKNESS), color=color))
-    elif kind == G.mjGEOM_MESH:
+        return [shape("cube", [2 * v for v in size])]
+    if kind == G.mjGEOM_SPHERE:
+        return [shape("sphere", [2 * size[0]] * 3)]
+    if kind == G.mjGEOM_ELLIPSOID:
+        return [shape("sphere", [2 * v for v in size])]
+    if kind == G.mjGEOM_CYLINDER:
+        return [shape("cylinder", (2 * size[0], 2 * size[0], 2 * size[1]))]
+    if kind == G.mjGEOM_CAPSULE:
+        d, half = 2 * size[0], size[1]
+        return [shape("cylinder", (d, d, 2 * half)),
+                *(shape("sphere", (d, d, d), at=_shifted(pos, quat, end)) for end in (-half, half))]
+    if kind == G.mjGEOM_PLANE:
+        sx, sy = (2 * s if s > 0 else PLANE_SIZE for s in size[:2])
+        return [shape("cube", (sx, sy, PLANE_THICKNESS), at=_shifted(pos, quat, -PLANE_THICKNESS / 2))]
+    if kind == G.mjGEOM_MESH:
         mesh = int(model.geom_dataid[g])
         faces = int(model.mesh_facenum[mesh])
-        if faces > MESH_FACES:  # its bounding box in the geom's frame
-            centre, half = model.geom_aabb[g][:3], model.geom_aabb[g][3:]
-            into.cubes.append(CubePrimitive(pose=_pose(np.asarray(pos) + _rotate(quat, centre), quat),
-                                            size=Vector3(x=2 * half[0], y=2 * half[1], z=2 * half[2]), color=color))
-            return
+        if faces > MESH_FACES:  # its bounding box, in the geom's frame
+            centre, half_sizes = model.geom_aabb[g][:3], model.geom_aabb[g][3:]
+            return [shape("cube", [2 * v for v in half_sizes], at=np.asarray(pos) + _rotate(quat, centre))]
         v0, f0 = int(model.mesh_vertadr[mesh]), int(model.mesh_faceadr[mesh])
         vertices = model.mesh_vert[v0:v0 + int(model.mesh_vertnum[mesh])]
-        into.models.append(ModelPrimitive(pose=_pose(pos, quat), scale=Vector3(x=1.0, y=1.0, z=1.0), color=color,
-                                          override_color=True, media_type="model/stl",
-                                          data=stl(vertices, model.mesh_face[f0:f0 + faces])))
-    # height fields and SDFs are not drawn
+        return [shape("model", (1.0, 1.0, 1.0), data=stl(vertices, model.mesh_face[f0:f0 + faces]))]
+    return []
 
 
-def _rotate(quat, v) -> np.ndarray:
-    out = np.zeros(3)
-    mujoco.mju_rotVecQuat(out, np.asarray(v, float), np.asarray(quat, float))
-    return out
+def _primitive(s: Shape):
+    pose = Pose(position=Vector3(x=s.position[0], y=s.position[1], z=s.position[2]),
+                orientation=Quaternion(x=s.quat[1], y=s.quat[2], z=s.quat[3], w=s.quat[0]))
+    size = Vector3(x=s.size[0], y=s.size[1], z=s.size[2])
+    color = Color(r=s.rgba[0], g=s.rgba[1], b=s.rgba[2], a=s.rgba[3])
+    if s.kind == "cube":
+        return CubePrimitive(pose=pose, size=size, color=color)
+    if s.kind == "sphere":
+        return SpherePrimitive(pose=pose, size=size, color=color)
+    if s.kind == "cylinder":
+        return CylinderPrimitive(pose=pose, size=size, bottom_scale=1.0, top_scale=1.0, color=color)
+    return ModelPrimitive(pose=pose, scale=size, color=color, override_color=True, media_type="model/stl",
+                          data=s.data)
 
 
 class SceneGeometry:
     """One entity per body that has visible geoms, in that body's frame and locked to it (it moves with the
-    body's transform); its primitives made once (meshes are the costly part)."""
+    body's transform); its shapes made once (meshes are the costly part)."""
 
     def __init__(self, model):
         names = frame_names(model)
-        bodies: dict[int, Primitives] = {}
+        bodies: dict[int, list[Shape]] = {}
         for g in range(model.ngeom):
             if model.geom_group[g] < VISIBLE_GROUPS and model.geom_rgba[g][3] > 0:
-                add_geom(model, g, bodies.setdefault(int(model.geom_bodyid[g]), Primitives()))
-        self.bodies = [(names[b], p) for b, p in sorted(bodies.items()) if p]
+                bodies.setdefault(int(model.geom_bodyid[g]), []).extend(geom_shapes(model, g))
+        self.bodies = {names[b]: shapes for b, shapes in sorted(bodies.items()) if shapes}
 
     def message(self, seconds: float) -> SceneUpdate:
         when = stamp(seconds)
-        return SceneUpdate(entities=[
-            SceneEntity(timestamp=when, frame_id=name, id=name, frame_locked=True, cubes=p.cubes,
-                        spheres=p.spheres, cylinders=p.cylinders, models=p.models)
-            for name, p in self.bodies])
+        entities = []
+        for name, shapes in self.bodies.items():
+            kinds: dict[str, list] = {"cube": [], "sphere": [], "cylinder": [], "model": []}
+            for s in shapes:
+                kinds[s.kind].append(_primitive(s))
+            entities.append(SceneEntity(timestamp=when, frame_id=name, id=name, frame_locked=True,
+                                        cubes=kinds["cube"], spheres=kinds["sphere"], cylinders=kinds["cylinder"],
+                                        models=kinds["model"]))
+        return SceneUpdate(entities=entities)
