@@ -1,6 +1,6 @@
 // Foxglove's own WebSocket client (@foxglove/ws-protocol) watching a `morsec run --foxglove`, for the tests:
 //
-//     node tests/foxglove/watch.mjs ws://127.0.0.1:8765 [--seconds 30] [--until-stdin-closes]
+//     node tests/foxglove/watch.mjs ws://127.0.0.1:8765 [--seconds 30] [--until-stdin-closes] [--count]
 //
 // It connects with the subprotocol foxglove-sdk's server speaks (foxglove.sdk.v1), subscribes to every channel
 // advertised, decodes each message with its channel's schema as the Foxglove app does (protobuf: the channel's
@@ -11,7 +11,8 @@
 //     {"event": "message", "topic": ..., "logTime": "<ns>", "message": {...}}    bytes as {"bytes": n, "head": base64}
 //     {"event": "time", "timestamp": "<ns>"}      {"event": "close"}
 //
-// It stops after --seconds (60), or when its standard input closes if asked to.
+// It stops after --seconds (60), or when its standard input closes if asked to. With --count (the benchmark's
+// client) it decodes nothing and prints, when it stops, one line {"event": "count", "messages": {topic: n}}.
 import wsProtocol from "@foxglove/ws-protocol";
 import protobuf from "protobufjs";
 import descriptor from "protobufjs/ext/descriptor/index.js";
@@ -53,20 +54,28 @@ function decoder(channel) {
   throw new Error(`no decoder for encoding ${channel.encoding} (${channel.topic})`);
 }
 
+const counting = process.argv.includes("--count");
+const counts = {};
+
 const ws = new WebSocket(url, [SUBPROTOCOL]);
 const client = new FoxgloveClient({ ws });
-const subscriptions = new Map(); // subscription id -> {topic, decode}
+const subscriptions = new Map(); // subscription id -> {topic, decode (unless counting)}
 
 client.on("open", () => emit({ event: "open", protocol: ws.protocol }));
 client.on("serverInfo", (info) => emit({ event: "serverInfo", ...info }));
 client.on("error", (error) => emit({ event: "error", error: String(error) }));
 client.on("close", () => {
+  if (counting) emit({ event: "count", messages: counts });
   emit({ event: "close" });
   process.exit(0);
 });
-client.on("time", ({ timestamp }) => emit({ event: "time", timestamp }));
+client.on("time", ({ timestamp }) => counting || emit({ event: "time", timestamp }));
 client.on("advertise", (channels) => {
   for (const channel of channels) {
+    if (counting) {
+      subscriptions.set(client.subscribe(channel.id), { topic: channel.topic });
+      continue;
+    }
     const schema = channel.schemaEncoding === "jsonschema" ? JSON.parse(channel.schema) : channel.schema.length;
     emit({ event: "advertise", channel: { ...channel, schema } });
     try {
@@ -78,6 +87,10 @@ client.on("advertise", (channels) => {
 });
 client.on("message", ({ subscriptionId, timestamp, data }) => {
   const subscription = subscriptions.get(subscriptionId);
+  if (counting) {
+    counts[subscription.topic] = (counts[subscription.topic] ?? 0) + 1;
+    return;
+  }
   const bytes = new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
   try {
     emit({ event: "message", topic: subscription.topic, logTime: timestamp, message: subscription.decode(bytes) });
