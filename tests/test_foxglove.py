@@ -129,7 +129,8 @@ def near(a: float, b: float, tolerance: float = 1e-6) -> bool:
 def test_foxglove_client_watches_the_rover_driven_by_a_client(scene, foxglove_client, tmp_path):
     port = free_port()
     with Morsec(REPO / "scenes" / scene, tmp_path, args=("--foxglove", "--foxglove-port", port)) as sim:
-        assert f"  foxglove       ws://{HOST}:{port}" in sim.stdout
+        (line,) = [x for x in sim.stdout if x.startswith("  foxglove ")]
+        assert line.startswith(f"  foxglove       ws://{HOST}:{port}  (open in Foxglove: https://")
         watcher = Watcher(f"ws://{HOST}:{port}")
         try:
             # the subprotocol foxglove-sdk speaks, the simulated clock, and the channels, each with its schema

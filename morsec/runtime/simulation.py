@@ -522,7 +522,7 @@ class Simulation:
                 else:
                     lines.append(f"  {what:<14} {where}" + (f"  ({pseudo})" if what == "services" else ""))
         if self.foxglove is not None:
-            lines.append(f"  {'foxglove':<14} {self.foxglove.url}")
+            lines.append(f"  {'foxglove':<14} {self.foxglove.url}  (open in Foxglove: {self.foxglove.app_url})")
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")

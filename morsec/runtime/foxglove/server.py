@@ -55,6 +55,11 @@ class FoxgloveServer:
     def url(self) -> str:
         return f"ws://{self.bind}:{self.server.port}"
 
+    @property
+    def app_url(self) -> str:
+        """Foxglove's web app with this server as its data source."""
+        return self.server.app_url() or ""
+
     def streams_for(self, fqn: str, cls, level: str | None, properties) -> list[FoxgloveStream]:
         made = streams_for(self.context, fqn, cls, level, properties)
         self.streams.extend(made)
