@@ -7,6 +7,7 @@ primitives of every geom kind, the errors a user meets."""
 
 from __future__ import annotations
 
+import base64
 import json
 import math
 import os
@@ -200,6 +201,73 @@ def test_foxglove_client_watches_the_rover_driven_by_a_client(scene, foxglove_cl
             assert abs(transforms["rover"]["translation"]["x"] - pose["message"]["x"]) < 1e-3
         finally:
             watcher.close()
+
+
+SENSOR_KINDS = """\
+environment: {name: empty, time: {strategy: best_effort}}
+robots:
+  - name: robot
+    type: atrv
+    components:
+      - {name: ldmrs, type: sick_ld_mrs, translate: [0.5, 0.0, 0.4]}
+      - {name: upright, type: video_camera, translate: [0.6, 0.0, 0.6], properties: {cam_width: 64, cam_height: 48}}
+      - name: flipped
+        type: video_camera
+        translate: [0.6, 0.0, 0.6]
+        properties: {cam_width: 64, cam_height: 48, Vertical_Flip: false}
+      - {name: depth_image, type: depth_video_camera, translate: [0.6, 0.0, 0.7], properties: {cam_width: 64, cam_height: 48}}
+      - {name: kinect, type: kinect, translate: [0.6, 0.0, 0.8], properties: {cam_width: 32, cam_height: 24}}
+"""
+
+
+def test_foxglove_client_decodes_every_kind_of_sensor(foxglove_client, tmp_path):
+    """A layered laser as a point cloud, depth pictures in metres, a kinect's two pictures, and pictures
+    delivered bottom row first (Vertical_Flip: false) turned back: top row first, as Foxglove draws them."""
+    port = free_port()
+    scene = tmp_path / "kinds.yaml"
+    scene.write_text(SENSOR_KINDS, encoding="utf-8")
+    with Morsec(scene, tmp_path, args=("--foxglove", "--foxglove-port", port)):
+        watcher = Watcher(f"ws://{HOST}:{port}")
+        try:
+            expected = {"/robot/ldmrs": "foxglove.PointCloud", "/robot/upright": "foxglove.RawImage",
+                        "/robot/flipped": "foxglove.RawImage", "/robot/depth_image": "foxglove.RawImage",
+                        "/robot/kinect/rgb": "foxglove.RawImage", "/robot/kinect/depth": "foxglove.RawImage"}
+            watcher.wait_for("every channel", lambda e: expected.keys() <= watcher.channels().keys())
+            assert {t: watcher.channels()[t]["schemaName"] for t in expected} == expected
+            assert "/robot/kinect" not in watcher.channels()
+
+            cloud = watcher.message("/robot/ldmrs")["message"]
+            assert cloud["data"]["bytes"] == 1604 * 12 and cloud["frameId"] == "robot.ldmrs"  # 4 layers of 401 rays
+
+            upright = watcher.message("/robot/upright")["message"]
+            flipped = watcher.message("/robot/flipped")["message"]
+            assert flipped["encoding"] == "rgba8" and flipped["data"]["bytes"] == 64 * 48 * 4
+            assert flipped["data"]["head"] == upright["data"]["head"], "the same top row, whichever way delivered"
+
+            depth = watcher.message("/robot/depth_image")["message"]
+            assert (depth["encoding"], depth["step"], depth["data"]["bytes"]) == ("32FC1", 64 * 4, 64 * 48 * 4)
+            top_row = np.frombuffer(base64.b64decode(depth["data"]["head"]), dtype="<f4")
+            assert np.all(top_row == 20.0), "the top row sees the sky: cam_far (depth pictures come bottom row first)"
+
+            rgb = watcher.message("/robot/kinect/rgb")["message"]
+            kinect_depth = watcher.message("/robot/kinect/depth")["message"]
+            assert (rgb["encoding"], rgb["width"], rgb["height"]) == ("rgba8", 32, 24)
+            assert (kinect_depth["encoding"], kinect_depth["data"]["bytes"]) == ("32FC1", 32 * 24 * 4)
+        finally:
+            watcher.close()
+
+
+def test_optical_frame_of_a_camera_turned_by_yaw():
+    """A camera's optical axes (x right, y down, z forward) in its component's frame, turned by yaw."""
+    from morsec.runtime.foxglove.streams import optical_quaternion
+
+    for yaw in (0.0, math.radians(60), -math.radians(60)):
+        x, y, z, w = optical_quaternion(yaw)
+        rotation = np.array(_matrix((w, x, y, z)))
+        forward, left = np.array([math.cos(yaw), math.sin(yaw), 0.0]), np.array([-math.sin(yaw), math.cos(yaw), 0.0])
+        assert np.allclose(rotation @ [0, 0, 1], forward)  # optical z: where the camera looks
+        assert np.allclose(rotation @ [1, 0, 0], -left)  # optical x: to the right
+        assert np.allclose(rotation @ [0, 1, 0], [0, 0, -1])  # optical y: down
 
 
 # ---------------------------------------------------------------- the Python side

@@ -219,11 +219,14 @@ def streams_for(context: Context, fqn: str, cls, level: str | None, properties) 
     return [JsonStream(fqn, context, topic, schema_name(cls, level), cls.message_schema(level))]
 
 
-def _optical_pose(yaw: float) -> Pose:
-    """The optical frame of a camera turned by `yaw` (rad) about the component's z axis."""
+def optical_quaternion(yaw: float) -> tuple[float, float, float, float]:
+    """(x, y, z, w) of the optical frame of a camera turned by `yaw` (rad) about the component's z axis."""
     w1, _, _, z1 = euler_to_quat(0.0, 0.0, yaw)
     x2, y2, z2, w2 = OPTICAL
     # (w1 + z1 k) * (w2 + x2 i + y2 j + z2 k)
-    q = (w1 * x2 - z1 * y2, w1 * y2 + z1 * x2, w1 * z2 + z1 * w2, w1 * w2 - z1 * z2)
-    return Pose(position=Vector3(x=0.0, y=0.0, z=0.0),
-                orientation=Quaternion(x=float(q[0]), y=float(q[1]), z=float(q[2]), w=float(q[3])))
+    return (float(w1 * x2 - z1 * y2), float(w1 * y2 + z1 * x2), float(w1 * z2 + z1 * w2), float(w1 * w2 - z1 * z2))
+
+
+def _optical_pose(yaw: float) -> Pose:
+    x, y, z, w = optical_quaternion(yaw)
+    return Pose(position=Vector3(x=0.0, y=0.0, z=0.0), orientation=Quaternion(x=x, y=y, z=z, w=w))
