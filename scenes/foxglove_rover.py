@@ -19,12 +19,12 @@ rover.append(sick)
 
 camera = VideoCamera()
 camera.translate(0.6, 0.0, 0.6)
-camera.properties(cam_width=320, cam_height=240)
+camera.properties(cam_width=160, cam_height=120)
 rover.append(camera)
 
 depth = DepthCamera()
 depth.translate(0.6, 0.0, 0.7)
-depth.properties(cam_width=160, cam_height=120, cam_far=20.0)
+depth.properties(cam_width=80, cam_height=60, cam_far=20.0)
 rover.append(depth)
 
 rover.add_default_interface('socket')

@@ -166,8 +166,8 @@ def test_foxglove_client_watches_the_rover_driven_by_a_client(scene, foxglove_cl
 
             # cameras: an RGBA picture, and the depth camera's points in its optical frame
             image = watcher.message("/rover/camera")["message"]
-            assert (image["width"], image["height"], image["encoding"], image["step"]) == (320, 240, "rgba8", 1280)
-            assert image["data"]["bytes"] == 320 * 240 * 4 and image["frameId"] == "rover.camera"
+            assert (image["width"], image["height"], image["encoding"], image["step"]) == (160, 120, "rgba8", 640)
+            assert image["data"]["bytes"] == 160 * 120 * 4 and image["frameId"] == "rover.camera"
             cloud = watcher.message("/rover/depth")["message"]
             assert cloud["pointStride"] == 12 and [f["name"] for f in cloud["fields"]] == ["x", "y", "z"]
             assert {f["type"] for f in cloud["fields"]} == {"FLOAT32"}
