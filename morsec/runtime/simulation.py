@@ -609,8 +609,6 @@ class Simulation:
         thread reads its sockets in."""
         self.step()
         self._send_sensor_messages()
-        if self.foxglove is not None:
-            self.foxglove.frame(self.data, self.clock.now())
         self._flush()
 
     def step(self) -> None:
@@ -659,6 +657,8 @@ class Simulation:
     def _flush(self) -> None:
         for mw in self.middlewares.values():
             mw.flush()
+        if self.foxglove is not None:  # also while no frame runs (a client awaited, lockstep): Foxglove still sees
+            self.foxglove.frame(self.data, self.clock.now())
 
     def _send_sensor_messages(self) -> None:
         """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a

@@ -66,8 +66,8 @@ class FoxgloveServer:
         return made
 
     def frame(self, data, seconds: float) -> None:
-        """After a frame: the time and the transforms (at most WORLD_RATE times per wall-clock second), and
-        the scene to a client that has just subscribed to it."""
+        """Called whenever the loop sends what is queued: the time and the transforms (at most WORLD_RATE times
+        per wall-clock second), and the scene to a client that has just subscribed to it."""
         now = time.perf_counter()
         if now < self._next:
             return
