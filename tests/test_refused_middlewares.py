@@ -62,6 +62,14 @@ def test_a_yaml_scene_naming_a_refused_middleware_gets_its_one_line(tmp_path):
     assert str(caught.value) == f"{path}:6:57: robots[0].components[0].streams[0].middleware: {refusal('moos')}"
 
 
+def test_a_binding_to_morses_yarp_datastream_gets_the_refusal(tmp_path):
+    path = script(tmp_path, "pose.configure_mw(['morse.middleware.yarp_datastream.YarpDatastreamManager', 'post', 'x'])")
+    with pytest.raises(SceneError) as caught:
+        load_scene(path)
+    assert str(caught.value) == (f"{path}:5:1: configure_mw(['morse.middleware.yarp_datastream.YarpDatastreamManager', "
+                                 f"'post', 'x']): {refusal('yarp')}")
+
+
 def test_an_unknown_middleware_still_lists_those_morsec_has(tmp_path):
     with pytest.raises(SceneError) as caught:
         load_scene(script(tmp_path, "pose.add_stream('mavros')"))
