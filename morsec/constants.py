@@ -11,6 +11,7 @@ SERVICE_PORT = 4000
 SERVICE_PORT_ATTEMPTS = 10
 SYNC_PORT = 6000
 DEFAULT_BIND = "127.0.0.1"
+FOXGLOVE_PORT = 8765  # `morsec run --foxglove`: Foxglove's own default
 
 DEFAULT_FREQUENCY = 60.0
 TimeStrategy = Literal["best_effort", "fixed_step"]  # the scene's environment.time.strategy, `run --time-strategy`

@@ -434,17 +434,17 @@ ERRORS = {
         from morse.builder import *
         robot = ATRV()
         motion = MotionVW()
-        motion.configure_mw(['morse.middleware.yarp_datastream.YarpDatastreamManager', 'read', 'x'])
+        motion.configure_mw(['morse.middleware.zeromq_datastream.ZmqDatastreamManager', 'read', 'x'])
         robot.append(motion)
-        """, "sim.py:4:1: configure_mw(['morse.middleware.yarp_datastream.YarpDatastreamManager', 'read', 'x']): "
+        """, "sim.py:4:1: configure_mw(['morse.middleware.zeromq_datastream.ZmqDatastreamManager', 'read', 'x']): "
              "no morsec middleware for classpath"),
     "unknown_middleware": ("""
         from morse.builder import *
         robot = ATRV()
         motion = MotionVW()
-        motion.add_stream('yarp')
+        motion.add_stream('zeromq')
         robot.append(motion)
-        """, ("sim.py:4:1: robots[0].components[0].streams[0]", "'yarp'", "'socket'")),
+        """, ("sim.py:4:1: robots[0].components[0].streams[0]", "'zeromq'", "'socket'")),
     "bad_property_value": ("""
         from morse.builder import *
         robot = ATRV()

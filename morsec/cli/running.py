@@ -10,6 +10,7 @@ import typer
 from morsec.cli.common import fail
 from morsec.constants import (
     DEFAULT_BIND,
+    FOXGLOVE_PORT,
     MAX_PORT,
     MAX_TIME_SCALE,
     MIN_TIME_SCALE,
@@ -44,6 +45,11 @@ def run(
     view_port: Annotated[int, typer.Option(help="web viewer HTTP port")] = 8080,
     output_dir: Annotated[Path | None, typer.Option(
         "--output-dir", help="folder the text streams write their files into (default: the current folder)")] = None,
+    foxglove: Annotated[bool, typer.Option(
+        "--foxglove", help="serve the simulation on Foxglove's WebSocket protocol on --bind (transforms, lasers, "
+        "cameras, the scene's bodies, every stream; docs/foxglove.md)")] = False,
+    foxglove_port: Annotated[int, typer.Option(
+        "--foxglove-port", help="the Foxglove WebSocket server's port (0: a port the OS picks)")] = FOXGLOVE_PORT,
     wait_for_client: Annotated[bool, typer.Option(
         "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
         "simulation ends when the service clients that made requests have all left (runs started with their "
@@ -60,7 +66,8 @@ def run(
         fail(MorsecError(f"--duration must be a positive number, got {duration}"))
     if time_scale is not None and not MIN_TIME_SCALE <= time_scale <= MAX_TIME_SCALE:
         fail(MorsecError(f"--time-scale must be between {MIN_TIME_SCALE:g} and {MAX_TIME_SCALE:g}, got {time_scale}"))
-    for name, value in (("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port)):
+    for name, value in (("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port),
+                        ("--foxglove-port", foxglove_port)):
         if value is not None and not 0 <= value <= MAX_PORT:
             fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
     if seed is not None and seed < 0:
@@ -69,7 +76,8 @@ def run(
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
-                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client)
+                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client,
+                             foxglove=foxglove_port if foxglove else None)
         simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)

@@ -30,6 +30,7 @@ from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
 if TYPE_CHECKING:
+    from morsec.runtime.foxglove.server import FoxgloveServer  # imported only when a run asks for it
     from morsec.runtime.view import Status, View
 
 log = logging.getLogger("morsec.runtime")
@@ -60,6 +61,7 @@ class RunOptions:
     view: str | None = None  # "web" | "native": watch the simulation
     view_port: int = 8080
     wait_for_client: bool = False  # no frame before a client's first request or stream connection (sweeps)
+    foxglove: int | None = None  # serve the simulation on Foxglove's WebSocket protocol on this port (0: the OS's)
 
 
 @dataclass
@@ -87,6 +89,7 @@ class ComponentRuntime:
     services: list = field(default_factory=list)  # the middlewares its services are exposed on
     in_streams: list = field(default_factory=list)
     out_streams: list = field(default_factory=list)
+    echoes: list = field(default_factory=list)  # streams shown the commands its in_streams bring (--foxglove)
     modifiers: list = field(default_factory=list)
     active: bool = True
     stopped: bool = False
@@ -223,6 +226,13 @@ class Simulation:
             self.requests.expose(name, obj, _services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
+        self.foxglove: FoxgloveServer | None = None
+        if self.options.foxglove is not None:
+            try:
+                self._open_foxglove(manifest, build_dir.name)
+            except BaseException:
+                self.close()
+                raise
         self.view: View | None = None
         self._show(env)
 
@@ -341,6 +351,25 @@ class Simulation:
                 self.requests.expose_more(pseudo, obj, _services_of(obj))
         locks = [mw.lockstep() for mw in self.middlewares.values()]
         self.sync = next((lock for lock in locks if lock is not None), None)
+
+    def _open_foxglove(self, manifest: Manifest, name: str) -> None:
+        """`--foxglove`: every sensor's messages, and the commands the actuators' streams bring, also go to
+        Foxglove's channels (built only while a client subscribes), besides the world it draws."""
+        try:
+            from morsec.runtime.foxglove.server import FoxgloveServer
+        except ImportError as err:
+            if not (err.name or "").startswith("foxglove"):
+                raise
+            raise MorsecError("--foxglove needs the foxglove-sdk package: pip install foxglove-sdk (or "
+                              "pip install 'morsec[foxglove]')") from None
+        assert self.options.foxglove is not None
+        self.foxglove = server = FoxgloveServer(self.model, self.options.bind, self.options.foxglove, f"morsec {name}")
+        for entry in manifest.components:
+            comp = self.by_name[entry.fqn]
+            if comp.kind == "actuator" and not comp.in_streams:
+                continue  # nothing reaches it from outside
+            streams = server.streams_for(entry.fqn, type(comp.instance), entry.level, comp.instance.properties)
+            (comp.out_streams if comp.kind == "sensor" else comp.echoes).extend(streams)
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
@@ -537,6 +566,8 @@ class Simulation:
                     streams.append((what, direction, name, where))
                 else:
                     lines.append(f"  {what:<14} {where}" + (f"  ({pseudo})" if what == "services" else ""))
+        if self.foxglove is not None:
+            lines.append(f"  {'foxglove':<14} {self.foxglove.url}  (open in Foxglove: {self.foxglove.app_url})")
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
@@ -688,6 +719,8 @@ class Simulation:
     def _flush(self) -> None:
         for mw in self.middlewares.values():
             mw.flush()
+        if self.foxglove is not None:  # also while no frame runs (a client awaited, lockstep): Foxglove still sees
+            self.foxglove.frame(self.data, self.clock.now())
 
     def _send_sensor_messages(self) -> None:
         """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a
@@ -708,6 +741,9 @@ class Simulation:
         try:
             if message is not None:
                 self.receive(comp, message)
+                for echo in comp.echoes:
+                    if echo.listening:
+                        echo.publish(message, self.clock.now())
             comp.instance.default_action()
         except Exception as err:  # a bad command must not stop the simulation
             comp.fail_once(err)
@@ -753,10 +789,14 @@ class Simulation:
                     comp.instance.finalize()
                 except Exception as err:
                     comp.fail_once(err)
-            comp.in_streams, comp.out_streams = [], []
+            comp.in_streams, comp.out_streams, comp.echoes = [], [], []
         for mw in getattr(self, "middlewares", {}).values():
             mw.close()
         self.middlewares = {}
+        foxglove = getattr(self, "foxglove", None)
+        if foxglove is not None:
+            foxglove.close()
+            self.foxglove = None
         self.poller.close()
 
 

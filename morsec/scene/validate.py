@@ -18,6 +18,8 @@ from pydantic_core import ErrorDetails
 from morsec.component.catalogue import Catalogue
 from morsec.constants import FORBIDDEN_NAME_CHARS
 from morsec.errors import SceneError, close_matches, did_you_mean, one_of, yaml_path
+from morsec.middleware.refused import refusal
+from morsec.middleware.registry import middlewares
 from morsec.scene.resolve import add_environment_objects, add_prop_defaults, add_robot_defaults, resolve
 from morsec.scene.schema import scene_model, types_named
 from morsec.scene.sourcemap import SourceMap
@@ -161,6 +163,9 @@ def _literal(path: tuple, got: Any, choices: list[str], data: Any) -> str:
         return f"unknown level {got!r} of component type {owner!r} (levels: {', '.join(map(repr, choices))}){hint}"
     if last == "type" and path[:1] == ("objects",):
         return f"unknown object type {got!r} (known: {', '.join(map(repr, ids))}){hint}"
+    refused = refusal(str(got)) if choices and set(choices) <= set(middlewares()) else None
+    if refused:  # a middleware MORSE had and morsec refuses: why, and what to use instead
+        return refused
     return f"{_show(got)} is not one of {one_of(choices)}{hint}"
 
 

@@ -17,6 +17,7 @@ from morsec.component.catalogue import camel_case, project_root
 from morsec.errors import did_you_mean, one_of
 from morsec.frontends.builder import session as _session
 from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
+from morsec.middleware.refused import REFUSED, refusal
 from morsec.modifiers.registry import MODIFIERS
 from morsec.scene import models
 
@@ -370,6 +371,10 @@ class AbstractComponent:
                     if len(parts) > 2:
                         fields["path"] = parts[2]
                     return mw, fields
+            for module in classpath.lower().split("."):  # MORSE's yarp_datastream, moos ...: why not, and instead
+                refused = next((refusal(name) for name in REFUSED if module.startswith(name)), None)
+                if refused:
+                    raise self._session.error(f"{method}({parts!r}): {refused}")
             raise self._session.error(f"{method}({parts!r}): no morsec middleware for classpath {classpath!r}; "
                                       f"available middlewares: {one_of(middlewares())}")
         return binding, {}
