@@ -48,6 +48,11 @@ def run(
         "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
         "simulation ends when the service clients that made requests have all left (runs started with their "
         "client, as `morsec sweep` does)")] = False,
+    record: Annotated[Path | None, typer.Option(
+        help="record every stream into this MCAP file, in simulated time (ROS 2 messages where ROS has them, "
+        "JSON otherwise; docs/recording.md)")] = None,
+    record_services: Annotated[bool, typer.Option(
+        "--record-services", help="also record the service requests and their answers (with --record)")] = False,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -65,11 +70,14 @@ def run(
             fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
     if seed is not None and seed < 0:
         fail(MorsecError(f"--seed must be 0 or more, got {seed}"))
+    if record_services and record is None:
+        fail(MorsecError("--record-services records into the file --record names: give --record FILE.mcap"))
     try:
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
-                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client)
+                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client,
+                             record=record, record_services=record_services)
         simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)

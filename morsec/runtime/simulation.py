@@ -55,6 +55,8 @@ class RunOptions:
     view: str | None = None  # "web" | "native": watch the simulation
     view_port: int = 8080
     wait_for_client: bool = False  # no frame before a client's first request or stream connection (sweeps)
+    record: Path | None = None  # an MCAP file recording every stream (morsec.middleware.record)
+    record_services: bool = False  # ... and the service requests and answers
 
 
 @dataclass
@@ -83,6 +85,7 @@ class ComponentRuntime:
     in_streams: list = field(default_factory=list)
     out_streams: list = field(default_factory=list)
     modifiers: list = field(default_factory=list)
+    recording: Any = None  # an actuator's tap in the recording, if one is made: the commands it takes
     active: bool = True
     stopped: bool = False
     errors: set = field(default_factory=set)
@@ -215,6 +218,9 @@ class Simulation:
             self.requests.expose(name, obj, _services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
+        self.recorder = None
+        if self.options.record is not None:
+            self._open_recording(manifest)
         self.view = None
         if self.options.view:
             from morsec.runtime.view import open_view
@@ -302,6 +308,50 @@ class Simulation:
                 self.requests.expose_more(pseudo, obj, _services_of(obj))
         locks = [mw.lockstep() for mw in self.middlewares.values()]
         self.sync = next((lock for lock in locks if lock is not None), None)
+
+    def _open_recording(self, manifest: Manifest) -> None:
+        """Every component with a stream recorded (its messages, or the commands it takes), in simulated time."""
+        import json
+
+        from morsec import __version__
+        from morsec.component.catalogue import type_lineage
+        from morsec.middleware.base import StreamRequest
+        from morsec.middleware.record.channels import plan_stream
+        from morsec.middleware.record.recorder import Recorder
+        plans, taps = [], []
+        for entry in manifest.components:
+            streams = self.streams_of.get(entry.fqn)
+            if not streams:
+                continue
+            cls = load_class(entry.component)
+            ref = entry.component
+            schema = f"morsec/{ref.kind}/{ref.id}" + (f"/{entry.level}" if entry.level else "")
+            for direction in dict.fromkeys(s.direction for s in streams):
+                request = StreamRequest(entry.fqn, direction, {}, type_lineage(cls), dict(entry.properties))
+                ros = [s.endpoint for s in streams if s.middleware == "ros" and s.direction == direction]
+                plans.append(plan_stream(request, schema, cls.message_schema(entry.level), ros))
+                taps.append((self.by_name[entry.fqn], direction))
+        details = self.requests.exposed["simulation"].obj.details()
+        metadata = {"morsec": {
+            "version": __version__, "frequency": repr(manifest.loop.frequency),
+            "time": "simulated" + (" (s since the start)" if self.clock.origin == 0.0 else
+                                   " (s since the Unix epoch, starting at the wall-clock time of the start)"),
+            "details": json.dumps(details), "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
+        try:
+            self.recorder = Recorder(Path(self.options.record), self.clock.now, plans, metadata,
+                                     services=self.options.record_services)
+        except MorsecError:
+            self.close()
+            raise
+        for index, (comp, direction) in enumerate(taps):
+            tap = self.recorder.stream(index)
+            if direction == "OUT":
+                comp.out_streams.append(tap)
+            else:
+                comp.recording = tap
+        if self.options.record_services:
+            self.recorder.watch(self.requests.on_request)
+            self.requests.on_leave.append(self.recorder.forget)
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
@@ -641,6 +691,8 @@ class Simulation:
             received = stream.take()
             if received is not None:
                 message = received
+        if message is not None and comp.recording is not None:
+            comp.recording.publish(message)
         try:
             if message is not None:
                 self.receive(comp, message)
@@ -694,6 +746,10 @@ class Simulation:
             mw.close()
         self.middlewares = {}
         self.poller.close()
+        recorder = getattr(self, "recorder", None)
+        if recorder is not None:  # last: it waits for its writer to finish the file
+            self.recorder = None
+            recorder.close()
 
 
 class Stability:

@@ -1,0 +1,154 @@
+"""The loop's side of a recording. Converting a message to ROS 2 and writing it to MCAP costs the loop's thread
+several times what a frame of a small scene costs, and a thread of the same process would take that time from
+the loop all the same (the interpreter runs one thread at a time): the work is done by a writer process
+(`writer`). The loop only pickles each message as it is published (sensors reuse their data dicts), batches
+them, and writes a batch to the writer's pipe every BATCH messages or BATCH_AGE wall-clock seconds. Closing
+the recording sends what is left and waits for the writer to finish the file."""
+
+from __future__ import annotations
+
+import logging
+import pickle
+import subprocess
+import sys
+import time
+from collections.abc import Callable
+from itertools import count
+from pathlib import Path
+from typing import Any
+
+from morsec.errors import RuntimeFailure
+from morsec.middleware.record.channels import ANSWERS, REQUESTS, StreamPlan
+from morsec.middleware.record.writer import HEADER
+
+log = logging.getLogger("morsec.record")
+
+BATCH = 512  # messages per write to the writer's pipe
+BATCH_AGE = 0.5  # s of wall time a message waits at most before it is sent
+BATCH_BYTES = 4 << 20  # or this many bytes of pickles (cameras)
+PIPE_SIZE = 1 << 20  # the pipe's buffer: the writer may lag behind by this much without the loop waiting
+CLOSE_TIMEOUT = 120.0  # s the run waits, at its end, for the writer to finish the file
+F_SETPIPE_SZ = 1031  # Linux's fcntl
+
+
+class Recorder:
+    def __init__(self, path: Path, now: Callable[[], float], plans: list[StreamPlan],
+                 metadata: dict[str, dict[str, str]], services: bool = False):
+        """`now`: the simulated time messages are logged at; `plans`: the streams (their index in the list is
+        their number); `services`: also record service requests and answers (see watch)."""
+        self.path = Path(path)
+        self.now = now
+        self.plans = list(plans)
+        if services:
+            self.plans += [StreamPlan(REQUESTS.topic, "OUT", (REQUESTS,)), StreamPlan(ANSWERS.topic, "OUT", (ANSWERS,))]
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            out = open(self.path, "wb")
+        except OSError as err:
+            raise RuntimeFailure(f"cannot write the recording {self.path}: {err.strerror or err}") from None
+        with out:
+            self.process = subprocess.Popen([sys.executable, "-m", "morsec.middleware.record.writer",
+                                             str(out.fileno()), str(self.path)],
+                                            stdin=subprocess.PIPE, pass_fds=(out.fileno(),))
+        self.pipe = self.process.stdin
+        try:
+            import fcntl
+            fcntl.fcntl(self.pipe.fileno(), F_SETPIPE_SZ, PIPE_SIZE)
+        except (ImportError, OSError):
+            pass
+        self.batch: list[tuple[int, float, bytes]] = []
+        self.batch_bytes = 0
+        self.oldest = 0.0
+        self.failed = False
+        self.clients: dict[Any, int] = {}
+        self.numbers = count(1)
+        self._send(("start", metadata, self.plans))
+
+    # ---- streams
+    def stream(self, index: int) -> RecordedStream:
+        return RecordedStream(self, index)
+
+    def add(self, index: int, message: Any) -> None:
+        payload = pickle.dumps(message, protocol=5)
+        if not self.batch:
+            self.oldest = time.perf_counter()
+        self.batch.append((index, self.now(), payload))
+        self.batch_bytes += len(payload)
+        if (len(self.batch) >= BATCH or self.batch_bytes >= BATCH_BYTES
+                or time.perf_counter() - self.oldest >= BATCH_AGE):
+            self.flush()
+
+    def flush(self) -> None:
+        if self.batch:
+            batch, self.batch, self.batch_bytes = self.batch, [], 0
+            self._send(("batch", batch))
+
+    def _send(self, frame: Any) -> None:
+        if self.failed:
+            return
+        body = pickle.dumps(frame, protocol=5)
+        try:
+            self.pipe.write(HEADER.pack(len(body)) + body)
+            self.pipe.flush()
+        except (BrokenPipeError, OSError, ValueError):  # the writer stopped (it said why on stderr)
+            self.failed = True
+            log.error("the recording %s stopped: its writer ended", self.path)
+
+    # ---- services
+    def watch(self, on_request: list) -> None:
+        """Record every service request, and its answer, from the request manager's `on_request` hook."""
+        requests, answers = len(self.plans) - 2, len(self.plans) - 1
+
+        def heard(request) -> None:
+            if request.client not in self.clients:
+                self.clients[request.client] = next(self.numbers)
+            client = self.clients[request.client]
+            about = {"client": client, "id": str(request.id), "component": request.component,
+                     "service": request.service}
+            self.add(requests, {**about, "args": list(request.args)})
+            reply = request.reply
+
+            def answer(request_id, status, result) -> None:
+                self.add(answers, {**about, "status": status, "result": result})
+                reply(request_id, status, result)
+
+            request.reply = answer
+
+        on_request.append(heard)
+
+    def forget(self, client: Any) -> None:
+        self.clients.pop(client, None)
+
+    def close(self) -> None:
+        """Send what is left, and wait until the writer has finished the file."""
+        if self.pipe is None:
+            return
+        self.flush()
+        try:
+            self.pipe.close()
+        except OSError:
+            pass
+        self.pipe = None
+        try:
+            code = self.process.wait(CLOSE_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            code = self.process.wait()
+        if code != 0:
+            log.error("the recording %s may be incomplete: its writer ended with code %s", self.path, code)
+
+
+class RecordedStream:
+    """A stream's tap: always listening (the sensor's message is built for the recording whoever else reads)."""
+
+    listening = True
+
+    def __init__(self, recorder: Recorder, index: int):
+        self.recorder = recorder
+        self.index = index
+
+    def publish(self, message: dict) -> None:
+        self.recorder.add(self.index, message)
+
+    def close(self) -> None:
+        pass
