@@ -24,7 +24,7 @@ from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
 from morsec.runtime.clock import Clock, Periodic, SleepHold
 from morsec.runtime.keys import KeyState
-from morsec.runtime.requests import RequestManager
+from morsec.runtime.requests import RequestManager, services_of
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
@@ -215,7 +215,7 @@ class Simulation:
             self.requests.on_request.append(self._client_request)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
-            self.requests.expose(name, obj, _services_of(obj))
+            self.requests.expose(name, obj, services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
         self.recorder = None
@@ -305,7 +305,7 @@ class Simulation:
             raise RuntimeFailure(str(err)) from None
         for mw in self.middlewares.values():
             for pseudo, obj in mw.services().items():
-                self.requests.expose_more(pseudo, obj, _services_of(obj))
+                self.requests.expose_more(pseudo, obj, services_of(obj))
         locks = [mw.lockstep() for mw in self.middlewares.values()]
         self.sync = next((lock for lock in locks if lock is not None), None)
 
@@ -336,7 +336,8 @@ class Simulation:
             "version": __version__, "frequency": repr(manifest.loop.frequency),
             "time": "simulated" + (" (s since the start)" if self.clock.origin == 0.0 else
                                    " (s since the Unix epoch, starting at the wall-clock time of the start)"),
-            "details": json.dumps(details), "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
+            "details": json.dumps(details),
+            "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
         try:
             self.recorder = Recorder(Path(self.options.record), self.clock.now, plans, metadata,
                                      services=self.options.record_services)
@@ -816,13 +817,3 @@ class Stability:
 def _sane(values: np.ndarray) -> np.ndarray:
     """Which values MuJoCo accepts in its state (finite, within mjMAXVAL)."""
     return np.abs(values) <= mujoco.mjMAXVAL
-
-
-def _services_of(obj) -> dict:
-    found = {}
-    for klass in reversed(type(obj).__mro__):
-        for value in vars(klass).values():
-            info = getattr(value, "_morsec_service", None)
-            if info is not None:
-                found[info.name] = info
-    return found

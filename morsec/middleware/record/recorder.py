@@ -1,17 +1,27 @@
 """The loop's side of a recording. Converting a message to ROS 2 and writing it to MCAP costs the loop's thread
-several times what a frame of a small scene costs, and a thread of the same process would take that time from
-the loop all the same (the interpreter runs one thread at a time): the work is done by a writer process
-(`writer`). The loop only pickles each message as it is published (sensors reuse their data dicts), batches
-them, and writes a batch to the writer's pipe every BATCH messages or BATCH_AGE wall-clock seconds. Closing
-the recording sends what is left and waits for the writer to finish the file."""
+more than a frame of a small scene costs, and a thread of the same process would take that time from the loop
+all the same (the interpreter runs one thread at a time, and handing it over between threads costs the loop
+more on a busy machine): the work is done by a writer process (`writer`).
+
+The loop only copies each message as it is published (sensors reuse their data dicts): its values,
+marshalled (its keys are sent when they change: a stream's keys are the same message after message), a
+third of what pickling the dict costs; a message marshal cannot hold (numpy values ...) is pickled whole.
+Every BATCH messages, BATCH_BYTES or BATCH_AGE wall-clock seconds, the batch is pickled and written to the
+writer's pipe without blocking: what the pipe does not take waits in memory and goes at the next batch, so
+that the loop does not wait for a writer that lags behind (on a busy machine) until MAX_PENDING bytes wait.
+Closing the recording sends what is left and waits for the writer to finish the file."""
 
 from __future__ import annotations
 
+import functools
 import logging
+import marshal
+import os
 import pickle
 import subprocess
 import sys
 import time
+from collections import deque
 from collections.abc import Callable
 from itertools import count
 from pathlib import Path
@@ -25,8 +35,9 @@ log = logging.getLogger("morsec.record")
 
 BATCH = 512  # messages per write to the writer's pipe
 BATCH_AGE = 0.5  # s of wall time a message waits at most before it is sent
-BATCH_BYTES = 4 << 20  # or this many bytes of pickles (cameras)
-PIPE_SIZE = 1 << 20  # the pipe's buffer: the writer may lag behind by this much without the loop waiting
+BATCH_BYTES = 4 << 20  # or this many bytes of messages (cameras)
+MAX_PENDING = 256 << 20  # bytes waiting for the writer beyond which the loop waits for it
+PIPE_SIZE = 1 << 20  # the pipe's buffer
 CLOSE_TIMEOUT = 120.0  # s the run waits, at its end, for the writer to finish the file
 F_SETPIPE_SZ = 1031  # Linux's fcntl
 
@@ -56,7 +67,12 @@ class Recorder:
             fcntl.fcntl(self.pipe.fileno(), F_SETPIPE_SZ, PIPE_SIZE)
         except (ImportError, OSError):
             pass
-        self.batch: list[tuple[int, float, bytes]] = []
+        self.fd = self.pipe.fileno()
+        os.set_blocking(self.fd, False)
+        self.pending: deque[memoryview] = deque()  # what the pipe has not taken yet
+        self.pending_bytes = 0
+        self.batch: list[tuple] = []  # (index, time, values) | (index, time, pickled message, None) | (index, keys)
+        self.keys: list[tuple | None] = [None] * len(self.plans)  # each stream's keys, as the writer last heard them
         self.batch_bytes = 0
         self.oldest = 0.0
         self.failed = False
@@ -68,11 +84,25 @@ class Recorder:
     def stream(self, index: int) -> RecordedStream:
         return RecordedStream(self, index)
 
-    def add(self, index: int, message: Any) -> None:
-        payload = pickle.dumps(message, protocol=5)
+    def add(self, index: int, message: dict) -> None:
+        """Queue one message of stream `index`, logged at its timestamp (a sensor's: the simulated time it was
+        measured at, which is now) or now (an actuator's command, a service's request)."""
         if not self.batch:
             self.oldest = time.perf_counter()
-        self.batch.append((index, self.now(), payload))
+        when = message.get("timestamp")
+        if when.__class__ is not float:
+            when = self.now()
+        keys = tuple(message)
+        try:
+            payload = marshal.dumps(tuple(message.values()))
+        except ValueError:  # values marshal cannot write (numpy's): the message pickled whole
+            payload = pickle.dumps(message, protocol=5)
+            self.batch.append((index, when, payload, None))
+        else:
+            if keys != self.keys[index]:
+                self.keys[index] = keys
+                self.batch.append((index, keys))
+            self.batch.append((index, when, payload))
         self.batch_bytes += len(payload)
         if (len(self.batch) >= BATCH or self.batch_bytes >= BATCH_BYTES
                 or time.perf_counter() - self.oldest >= BATCH_AGE):
@@ -87,12 +117,34 @@ class Recorder:
         if self.failed:
             return
         body = pickle.dumps(frame, protocol=5)
+        self.pending.append(memoryview(HEADER.pack(len(body)) + body))
+        self.pending_bytes += len(self.pending[-1])
+        self._write()
+        if self.pending_bytes > MAX_PENDING:  # the writer is far behind: wait for it
+            self._write(block=True)
+
+    def _write(self, block: bool = False) -> None:
+        """Write what is pending to the pipe, as much as it takes (all of it if `block`)."""
+        if block:
+            os.set_blocking(self.fd, True)
         try:
-            self.pipe.write(HEADER.pack(len(body)) + body)
-            self.pipe.flush()
-        except (BrokenPipeError, OSError, ValueError):  # the writer stopped (it said why on stderr)
+            while self.pending:
+                try:
+                    written = os.write(self.fd, self.pending[0])
+                except BlockingIOError:
+                    return
+                self.pending_bytes -= written
+                if written == len(self.pending[0]):
+                    self.pending.popleft()
+                else:
+                    self.pending[0] = self.pending[0][written:]
+        except OSError:  # the writer stopped (it said why on stderr)
             self.failed = True
+            self.pending.clear()
             log.error("the recording %s stopped: its writer ended", self.path)
+        finally:
+            if block and not self.failed:
+                os.set_blocking(self.fd, False)
 
     # ---- services
     def watch(self, on_request: list) -> None:
@@ -124,6 +176,8 @@ class Recorder:
         if self.pipe is None:
             return
         self.flush()
+        if not self.failed:
+            self._write(block=True)
         try:
             self.pipe.close()
         except OSError:
@@ -144,11 +198,7 @@ class RecordedStream:
     listening = True
 
     def __init__(self, recorder: Recorder, index: int):
-        self.recorder = recorder
-        self.index = index
-
-    def publish(self, message: dict) -> None:
-        self.recorder.add(self.index, message)
+        self.publish = functools.partial(recorder.add, index)  # the loop calls it: one call, not two
 
     def close(self) -> None:
         pass

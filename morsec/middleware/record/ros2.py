@@ -1,8 +1,8 @@
-"""A stream's data -> its ROS 2 messages, one converter per ROS serialiser (`ros.serialisers.SERIALISERS`),
+"""A stream's data -> its ROS 2 messages in CDR, one converter per ROS serialiser (`ros.serialisers.SERIALISERS`),
 as the ROS middleware's `conversions` build the ROS 1 ones: the same fields, stamps (the data's simulated
 time) and frames, with ROS 2's differences (no header seq; builtin_interfaces/Time; CameraInfo's d, k, r, p;
-frame ids without the leading '/', which tf2 refuses). Messages are rosbags' classes of the typestore the
-writer passes, serialised to CDR by it. Runs in the writer process."""
+frame ids without the leading '/', which tf2 refuses). Messages of a fixed layout are packed by `cdr`; those
+of variable size are rosbags' message classes serialised by its typestore. Runs in the writer process."""
 
 from __future__ import annotations
 
@@ -12,88 +12,115 @@ from typing import Any
 
 import numpy as np
 
-from morsec.kits.geometry import euler_to_quat
+from morsec.kits.geometry import euler_to_quat_tuple
+from morsec.middleware.record.cdr import ENCAPSULATION, Layout
+
+ZEROS = (0.0,) * 36
 
 
 def frame(name: str | None) -> str:
     return (name or "").lstrip("/")
 
 
+def stamp(seconds: float) -> tuple[int, int]:
+    """builtin_interfaces/Time (sec, nanosec) of a time in seconds."""
+    nanoseconds = round(float(seconds) * 1e9)
+    return nanoseconds // 1_000_000_000, nanoseconds % 1_000_000_000
+
+
+def quaternion(data: dict) -> tuple[float, float, float, float]:
+    """(x, y, z, w), ROS's order, of the data's roll, pitch, yaw."""
+    w, x, y, z = euler_to_quat_tuple(float(data.get("roll", 0.0)), float(data.get("pitch", 0.0)),
+                                     float(data.get("yaw", 0.0)))
+    return x, y, z, w
+
+
+def pose(data: dict) -> tuple[float, ...]:
+    """geometry_msgs/Pose's seven numbers: position, then orientation (x, y, z, w)."""
+    return (float(data["x"]), float(data["y"]), float(data["z"]), *quaternion(data))
+
+
 class Converter:
-    """Turns one stream's data into a list of messages, one per output of `channels.ros2_outputs` (None:
+    """Turns one stream's data into a list of CDR messages, one per output of `channels.ros2_outputs` (None:
     nothing on that output this time)."""
 
-    def __init__(self, types: dict[str, Any], endpoint: dict[str, Any]):
-        self.t = types  # ROS 2 type name -> rosbags message class
+    def __init__(self, store: Any, endpoint: dict[str, Any]):
+        self.store = store  # rosbags' typestore: message classes (store.types) and their serialiser
         self.endpoint = endpoint
         self.frame_id = frame(endpoint.get("frame_id"))
         self.child_frame_id = frame(endpoint.get("child_frame_id"))
 
-    def convert(self, data: dict) -> list:
+    def convert(self, data: dict) -> list[bytes | None]:
         raise NotImplementedError
 
-    # ---- building blocks
-    def stamp(self, seconds: float):
-        nanoseconds = round(float(seconds) * 1e9)
-        return self.t["builtin_interfaces/msg/Time"](sec=nanoseconds // 1_000_000_000,
-                                                     nanosec=nanoseconds % 1_000_000_000)
+    def serialise(self, message) -> bytes:
+        return bytes(self.store.serialize_cdr(message, message.__msgtype__))
 
-    def header(self, data: dict, frame_id: str | None = None):
-        return self.t["std_msgs/msg/Header"](stamp=self.stamp(data.get("timestamp", 0.0)),
-                                             frame_id=self.frame_id if frame_id is None else frame_id)
+    def header(self, data: dict):
+        sec, nanosec = stamp(data.get("timestamp", 0.0))
+        t = self.store.types
+        return t["std_msgs/msg/Header"](stamp=t["builtin_interfaces/msg/Time"](sec=sec, nanosec=nanosec),
+                                        frame_id=self.frame_id)
 
-    def vector(self, x=0.0, y=0.0, z=0.0):
-        return self.t["geometry_msgs/msg/Vector3"](x=float(x), y=float(y), z=float(z))
 
-    def quaternion(self, data: dict):
-        w, x, y, z = euler_to_quat(float(data.get("roll", 0.0)), float(data.get("pitch", 0.0)),
-                                   float(data.get("yaw", 0.0)))
-        return self.t["geometry_msgs/msg/Quaternion"](x=float(x), y=float(y), z=float(z), w=float(w))
-
-    def pose(self, data: dict):
-        point = self.t["geometry_msgs/msg/Point"](x=float(data["x"]), y=float(data["y"]), z=float(data["z"]))
-        return self.t["geometry_msgs/msg/Pose"](position=point, orientation=self.quaternion(data))
-
-    def transform(self, stamp, parent: str, child: str, translation, rotation):
-        t = self.t
-        return t["tf2_msgs/msg/TFMessage"](transforms=[t["geometry_msgs/msg/TransformStamped"](
-            header=t["std_msgs/msg/Header"](stamp=stamp, frame_id=parent), child_frame_id=child,
-            transform=t["geometry_msgs/msg/Transform"](translation=translation, rotation=rotation))])
-
-    def pose_transform(self, data: dict, parent: str, child: str):
-        return self.transform(self.stamp(data.get("timestamp", 0.0)), parent, child,
-                              self.vector(data["x"], data["y"], data["z"]), self.quaternion(data))
+def transform_layout(parent: str, child: str):
+    """tf2_msgs/TFMessage holding one geometry_msgs/TransformStamped: (pack, parent's values, child's)."""
+    layout = Layout().add("I")  # the sequence's length
+    parent_values = layout.header(parent)
+    child_values = layout.string(child)
+    layout.add("d", 7)  # translation, rotation
+    return layout.struct().pack, parent_values, child_values
 
 
 class PoseStamped(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        self.pack = layout.add("d", 7).struct().pack
+
     def convert(self, data):
-        return [self.t["geometry_msgs/msg/PoseStamped"](header=self.header(data), pose=self.pose(data))]
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]), *self.frame, *pose(data))]
 
 
 class Pose(Converter):
+    pack = Layout().add("d", 7).struct().pack
+
     def convert(self, data):
-        return [self.pose(data)]
+        return [ENCAPSULATION + self.pack(*pose(data))]
 
 
 class PoseWithCovariance(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        self.pack = layout.add("d", 7 + 36).struct().pack
+
     def convert(self, data):
-        t = self.t
-        inner = t["geometry_msgs/msg/PoseWithCovariance"](pose=self.pose(data), covariance=np.zeros(36))
-        return [t["geometry_msgs/msg/PoseWithCovarianceStamped"](header=self.header(data), pose=inner)]
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]), *self.frame, *pose(data), *ZEROS)]
 
 
 class PoseTf(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        self.pack, self.parent, self.child = transform_layout(self.frame_id, self.child_frame_id or "base_link")
+
     def convert(self, data):
-        return [self.pose_transform(data, self.frame_id, self.child_frame_id or "base_link")]
+        return [ENCAPSULATION + self.pack(1, *stamp(data["timestamp"]), *self.parent, *self.child, *pose(data))]
 
 
 class StaticTf(Converter):
     """The component's place on its robot, parent_frame_id -> frame_id, once a simulated second, stamped a
     second ahead (the ROS middleware's StaticTFPublisher)."""
 
-    def __init__(self, types, endpoint):
-        super().__init__(types, endpoint)
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
         self.last = -math.inf
+        self.pack, self.parent, self.child = transform_layout(frame(endpoint["parent_frame_id"]),
+                                                              self.child_frame_id or self.frame_id)
+        (x, y, z), (roll, pitch, yaw) = endpoint["placement"]
+        self.placement = pose({"x": x, "y": y, "z": z, "roll": roll, "pitch": pitch, "yaw": yaw})
 
     def due(self, data) -> bool:
         if float(data["timestamp"]) > self.last + 1.0:
@@ -101,14 +128,11 @@ class StaticTf(Converter):
             return True
         return False
 
-    def message(self, data):
-        (x, y, z), (roll, pitch, yaw) = self.endpoint["placement"]
-        return self.transform(self.stamp(float(data["timestamp"]) + 1.0), frame(self.endpoint["parent_frame_id"]),
-                              self.child_frame_id or self.frame_id, self.vector(x, y, z),
-                              self.quaternion({"roll": roll, "pitch": pitch, "yaw": yaw}))
-
     def convert(self, data):
-        return [self.message(data) if self.due(data) else None]
+        if not self.due(data):
+            return [None]
+        return [ENCAPSULATION + self.pack(1, *stamp(float(data["timestamp"]) + 1.0), *self.parent, *self.child,
+                                          *self.placement)]
 
 
 class StaticTf2(StaticTf):
@@ -121,23 +145,76 @@ class StaticTf2(StaticTf):
 
 
 class Odometry(Converter):
+    """nav_msgs/Odometry in frame_id of child_frame_id, and that transform on /tf."""
+
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        self.child = layout.string(self.child_frame_id)
+        self.pack = layout.add("d", 7 + 36 + 6 + 36).struct().pack  # pose, its covariance, twist, its covariance
+        self.pack_tf, self.tf_parent, self.tf_child = transform_layout(self.frame_id, self.child_frame_id)
+
     def convert(self, data):
-        t = self.t
-        twist = t["geometry_msgs/msg/Twist"](linear=self.vector(data.get("vx", 0.0), data.get("vy", 0.0),
-                                                                data.get("vz", 0.0)),
-                                             angular=self.vector(data.get("wx", 0.0), data.get("wy", 0.0),
-                                                                 data.get("wz", 0.0)))
-        msg = t["nav_msgs/msg/Odometry"](
-            header=self.header(data), child_frame_id=self.child_frame_id,
-            pose=t["geometry_msgs/msg/PoseWithCovariance"](pose=self.pose(data), covariance=np.zeros(36)),
-            twist=t["geometry_msgs/msg/TwistWithCovariance"](twist=twist, covariance=np.zeros(36)))
-        return [msg, self.pose_transform(data, self.frame_id, self.child_frame_id)]
+        time = stamp(data["timestamp"])
+        where = pose(data)
+        g = data.get
+        twist = (g("vx", 0.0), g("vy", 0.0), g("vz", 0.0), g("wx", 0.0), g("wy", 0.0), g("wz", 0.0))
+        return [ENCAPSULATION + self.pack(*time, *self.frame, *self.child, *where, *ZEROS, *twist, *ZEROS),
+                ENCAPSULATION + self.pack_tf(1, *time, *self.tf_parent, *self.tf_child, *where)]
 
 
-class JointState(Converter):
+class Imu(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        # orientation, its covariance, angular velocity, its covariance, linear acceleration, its covariance
+        self.pack = layout.add("d", 4 + 9 + 3 + 9 + 3 + 9).struct().pack
+
     def convert(self, data):
-        names = [k for k in data if k != "timestamp"]
-        return [joint_state(self.t, self.header(data), names, [float(data[k]) for k in names])]
+        covariance = ZEROS[:9]
+        if "orientation" in data:
+            q = data["orientation"]
+            orientation = (q["x"], q["y"], q["z"], q["w"]) if isinstance(q, dict) else tuple(q)
+        else:
+            orientation, covariance = (0.0, 0.0, 0.0, 1.0), (-1.0, *ZEROS[:8])  # ROS: no orientation estimate
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]), *self.frame, *orientation, *covariance,
+                                          *data["angular_velocity"], *ZEROS[:9], *data["linear_acceleration"],
+                                          *ZEROS[:9])]
+
+
+class NavSatFix(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        # NavSatStatus (int8 status, uint16 service), latitude, longitude, altitude, the position's covariance
+        # and its type
+        self.pack = layout.add("b").add("H").add("d", 3 + 9).add("B").struct().pack
+
+    def convert(self, data):
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]), *self.frame, 0, 1,  # STATUS_FIX, SERVICE_GPS
+                                          data["latitude"], data["longitude"], data["altitude"], *ZEROS[:9], 0)]
+
+
+class TwistStamped(Converter):
+    def __init__(self, store, endpoint):
+        super().__init__(store, endpoint)
+        layout = Layout()
+        self.frame = layout.header(self.frame_id)
+        self.pack = layout.add("d", 6).struct().pack
+
+    def convert(self, data):
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]), *self.frame, *data["linear_velocity"],
+                                          *data["angular_velocity"])]
+
+
+class Clock(Converter):
+    pack = Layout().add("i").add("I").struct().pack
+
+    def convert(self, data):
+        return [ENCAPSULATION + self.pack(*stamp(data["timestamp"]))]
 
 
 class LaserScan(Converter):
@@ -148,50 +225,19 @@ class LaserScan(Converter):
         window = math.radians(float(g.get("scan_window", 180.0)))
         ranges = np.asarray(data["range_list"], dtype=np.float32)
         increment = math.radians(float(g.get("resolution", 1.0)))
-        return [self.t["sensor_msgs/msg/LaserScan"](
-            header=self.header(data), angle_min=-window / 2, angle_max=-window / 2 + increment * max(len(ranges) - 1, 0),
-            angle_increment=increment, time_increment=0.0, scan_time=0.0, range_min=0.0,
+        last = -window / 2 + increment * max(len(ranges) - 1, 0)
+        return [self.serialise(self.store.types["sensor_msgs/msg/LaserScan"](
+            header=self.header(data), angle_min=-window / 2, angle_max=last, angle_increment=increment,
+            time_increment=0.0, scan_time=0.0, range_min=0.0,
             range_max=float(g.get("laser_range", 30.0)), ranges=ranges,
-            intensities=np.asarray(data.get("remission_list") or [], dtype=np.float32))]
+            intensities=np.asarray(data.get("remission_list") or [], dtype=np.float32)))]
 
 
-class Imu(Converter):
+class JointState(Converter):
     def convert(self, data):
-        t = self.t
-        orientation = t["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0)
-        covariance = np.zeros(9)
-        if "orientation" in data:
-            q = data["orientation"]
-            x, y, z, w = (q["x"], q["y"], q["z"], q["w"]) if isinstance(q, dict) else q
-            orientation = t["geometry_msgs/msg/Quaternion"](x=float(x), y=float(y), z=float(z), w=float(w))
-        else:
-            covariance[0] = -1.0  # ROS: no orientation estimate
-        return [t["sensor_msgs/msg/Imu"](
-            header=self.header(data), orientation=orientation, orientation_covariance=covariance,
-            angular_velocity=self.vector(*data["angular_velocity"]), angular_velocity_covariance=np.zeros(9),
-            linear_acceleration=self.vector(*data["linear_acceleration"]), linear_acceleration_covariance=np.zeros(9))]
-
-
-class NavSatFix(Converter):
-    def convert(self, data):
-        t = self.t
-        status = t["sensor_msgs/msg/NavSatStatus"](status=0, service=1)  # STATUS_FIX, SERVICE_GPS
-        return [t["sensor_msgs/msg/NavSatFix"](header=self.header(data), status=status,
-                                               latitude=float(data["latitude"]), longitude=float(data["longitude"]),
-                                               altitude=float(data["altitude"]), position_covariance=np.zeros(9),
-                                               position_covariance_type=0)]
-
-
-class TwistStamped(Converter):
-    def convert(self, data):
-        twist = self.t["geometry_msgs/msg/Twist"](linear=self.vector(*data["linear_velocity"]),
-                                                  angular=self.vector(*data["angular_velocity"]))
-        return [self.t["geometry_msgs/msg/TwistStamped"](header=self.header(data), twist=twist)]
-
-
-class Clock(Converter):
-    def convert(self, data):
-        return [self.t["rosgraph_msgs/msg/Clock"](clock=self.stamp(data.get("timestamp", 0.0)))]
+        names = [k for k in data if k != "timestamp"]
+        return [self.serialise(joint_state(self.store.types, self.header(data), names,
+                                           [float(data[k]) for k in names]))]
 
 
 class Image(Converter):
@@ -201,65 +247,67 @@ class Image(Converter):
         image = data.get("image")
         if image is None:
             return [None, None]
-        t = self.t
+        t = self.store.types
         header = self.header(data)
         width, height = int(data["width"]), int(data["height"])
         pixels = base64.b64decode(image) if isinstance(image, str) else bytes(image)
         k = [float(v) for row in data["intrinsic_matrix"] for v in row]
         p = [k[0], k[1], k[2], 0.0, k[3], k[4], k[5], 0.0, k[6], k[7], k[8], 0.0]
         roi = t["sensor_msgs/msg/RegionOfInterest"](x_offset=0, y_offset=0, height=0, width=0, do_rectify=False)
-        return [t["sensor_msgs/msg/Image"](header=header, height=height, width=width, encoding="rgba8",
-                                           is_bigendian=0, step=width * 4, data=np.frombuffer(pixels, dtype=np.uint8)),
-                t["sensor_msgs/msg/CameraInfo"](header=header, height=height, width=width, distortion_model="plumb_bob",
-                                                d=np.zeros(5), k=np.array(k), r=np.eye(3).ravel(), p=np.array(p),
-                                                binning_x=0, binning_y=0, roi=roi)]
+        return [self.serialise(t["sensor_msgs/msg/Image"](
+                    header=header, height=height, width=width, encoding="rgba8", is_bigendian=0, step=width * 4,
+                    data=np.frombuffer(pixels, dtype=np.uint8))),
+                self.serialise(t["sensor_msgs/msg/CameraInfo"](
+                    header=header, height=height, width=width, distortion_model="plumb_bob", d=np.zeros(5),
+                    k=np.array(k), r=np.eye(3).ravel(), p=np.array(p), binning_x=0, binning_y=0, roi=roi))]
 
 
 class PointCloud2(Converter):
     """x, y, z float32 in the camera's optical frame."""
 
     def convert(self, data):
-        t = self.t
+        t = self.store.types
         points = data["points"]
         raw = base64.b64decode(points) if isinstance(points, str) else bytes(memoryview(points))
         count = len(raw) // 12
         fields = [t["sensor_msgs/msg/PointField"](name=n, offset=4 * i, datatype=7, count=1)  # FLOAT32
                   for i, n in enumerate("xyz")]
-        return [t["sensor_msgs/msg/PointCloud2"](header=self.header(data), height=1, width=count, fields=fields,
-                                                 is_bigendian=False, point_step=12, row_step=12 * count,
-                                                 data=np.frombuffer(raw[:12 * count], dtype=np.uint8), is_dense=False)]
+        return [self.serialise(t["sensor_msgs/msg/PointCloud2"](
+            header=self.header(data), height=1, width=count, fields=fields, is_bigendian=False, point_step=12,
+            row_step=12 * count, data=np.frombuffer(raw[:12 * count], dtype=np.uint8), is_dense=False))]
 
 
 # ---- actuators: the command an actuator took, as the ROS message the ROS middleware would have read it from
 
 class TwistIn(Converter):
+    pack = Layout().add("d", 6).struct().pack
+
     def convert(self, data):
-        return [self.t["geometry_msgs/msg/Twist"](linear=self.vector(data.get("v", 0.0)),
-                                                  angular=self.vector(0.0, 0.0, data.get("w", 0.0)))]
+        return [ENCAPSULATION + self.pack(data.get("v", 0.0), 0.0, 0.0, 0.0, 0.0, data.get("w", 0.0))]
 
 
-class TwistXywIn(Converter):
+class TwistXywIn(TwistIn):
     def convert(self, data):
-        return [self.t["geometry_msgs/msg/Twist"](linear=self.vector(data.get("x", 0.0), data.get("y", 0.0)),
-                                                  angular=self.vector(0.0, 0.0, data.get("w", 0.0)))]
+        return [ENCAPSULATION + self.pack(data.get("x", 0.0), data.get("y", 0.0), 0.0, 0.0, 0.0, data.get("w", 0.0))]
 
 
-class PoseIn(Converter):
+class PoseIn(Pose):
     def convert(self, data):
-        return [self.pose({"x": 0.0, "y": 0.0, "z": 0.0, **data})]
+        return super().convert({"x": 0.0, "y": 0.0, "z": 0.0, **data})
 
 
 class PointIn(Converter):
+    pack = Layout().add("d", 3).struct().pack
+
     def convert(self, data):
-        return [self.t["geometry_msgs/msg/Point"](x=float(data.get("x", 0.0)), y=float(data.get("y", 0.0)),
-                                                  z=float(data.get("z", 0.0)))]
+        return [ENCAPSULATION + self.pack(data.get("x", 0.0), data.get("y", 0.0), data.get("z", 0.0))]
 
 
 class JointStateIn(Converter):
     def convert(self, data):
         names = list(data)
-        header = self.t["std_msgs/msg/Header"](stamp=self.stamp(0.0), frame_id="")
-        return [joint_state(self.t, header, names, [float(data[k]) for k in names])]
+        header = self.header({})
+        return [self.serialise(joint_state(self.store.types, header, names, [float(data[k]) for k in names]))]
 
 
 def joint_state(t, header, names: list[str], positions: list[float]):
@@ -276,5 +324,5 @@ CONVERTERS: dict[str, type[Converter]] = {
 }
 
 
-def converter(serialiser: str, types: dict[str, Any], endpoint: dict[str, Any]) -> Converter:
-    return CONVERTERS[serialiser](types, endpoint)
+def converter(serialiser: str, store: Any, endpoint: dict[str, Any]) -> Converter:
+    return CONVERTERS[serialiser](store, endpoint)

@@ -1,7 +1,7 @@
 """The writer process of a recording: reads what the loop's process sends on its standard input (`recorder`:
 length-prefixed pickles: the start, then batches of messages) and writes the MCAP file it was handed (a file
 descriptor), with the `mcap` package: each message as JSON on its stream's JSON channel and, converted by
-`ros2` and serialised to CDR by rosbags, on its ROS 2 channels. The file is finished (summary, footer) when
+`ros2` to CDR, on its ROS 2 channels. The file is finished (summary, footer) when
 the standard input ends: when the run closes the recording, whether it ended normally, by SIGINT or SIGTERM
 (the signals themselves are the run's to handle: this process ignores them), or by being killed.
 
@@ -9,6 +9,7 @@ the standard input ends: when the run closes the recording, whether it ended nor
 
 from __future__ import annotations
 
+import marshal
 import os
 import pickle
 import signal
@@ -51,8 +52,9 @@ class Recording:
         self.streams = []
         for plan in plans:
             ids = [self.channel(c) for c in plan.channels]
-            convert = converter(plan.serialiser, self.store.types, plan.endpoint) if plan.serialiser else None
+            convert = converter(plan.serialiser, self.store, plan.endpoint) if plan.serialiser else None
             self.streams.append((plan.component, ids[0], ids[1:], convert))
+        self.keys: list[tuple] = [()] * len(plans)
         self.failed: set[tuple[str, str]] = set()
 
     def channel(self, channel: Channel) -> int:
@@ -74,9 +76,18 @@ class Recording:
         self.sequence[channel] = sequence + 1
         self.writer.add_message(channel, nanoseconds, data, nanoseconds, sequence)
 
-    def add(self, index: int, seconds: float, payload: bytes) -> None:
+    def take(self, entry: tuple) -> None:
+        """One entry of a batch (see recorder.Recorder.batch)."""
+        if len(entry) == 2:
+            self.keys[entry[0]] = entry[1]
+        elif len(entry) == 3:
+            index, seconds, values = entry
+            self.add(index, seconds, dict(zip(self.keys[index], marshal.loads(values))))
+        else:
+            self.add(entry[0], entry[1], pickle.loads(entry[2]))
+
+    def add(self, index: int, seconds: float, message: dict) -> None:
         component, json_channel, ros_channels, convert = self.streams[index]
-        message = pickle.loads(payload)
         nanoseconds = max(0, round(seconds * 1e9))
         self.write(json_channel, nanoseconds, self.encode(message)[:-1])
         if convert is None:
@@ -91,9 +102,9 @@ class Recording:
                       f"({key[1]})",
                       file=sys.stderr, flush=True)
             return
-        for channel, msg in zip(ros_channels, converted):
-            if msg is not None:
-                self.write(channel, nanoseconds, bytes(self.store.serialize_cdr(msg, msg.__msgtype__)))
+        for channel, data in zip(ros_channels, converted):
+            if data is not None:
+                self.write(channel, nanoseconds, data)
 
     def finish(self) -> None:
         self.writer.finish()
@@ -109,8 +120,8 @@ def main(argv: list[str]) -> int:
             source = sys.stdin.buffer
             while (frame := read_frame(source)) is not None:
                 if frame[0] == "batch":
-                    for index, seconds, payload in frame[1]:
-                        recording.add(index, seconds, payload)  # type: ignore[union-attr]
+                    for entry in frame[1]:
+                        recording.take(entry)  # type: ignore[union-attr]
                 elif frame[0] == "start":
                     recording = Recording(out, frame[1], frame[2])
             if recording is not None:
