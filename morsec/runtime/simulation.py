@@ -219,8 +219,13 @@ class Simulation:
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
         self.recorder = None
-        if self.options.record is not None:
-            self._open_recording(manifest)
+        record = self.options.record
+        record_services = self.options.record_services
+        if record is None and env.get("record"):  # the scene's env.record: in the run's output folder
+            record = Path(self.options.output_dir) / env["record"]["file"]
+            record_services = record_services or bool(env["record"]["services"])
+        if record is not None:
+            self._open_recording(manifest, Path(record), record_services)
         self.view = None
         if self.options.view:
             from morsec.runtime.view import open_view
@@ -309,7 +314,7 @@ class Simulation:
         locks = [mw.lockstep() for mw in self.middlewares.values()]
         self.sync = next((lock for lock in locks if lock is not None), None)
 
-    def _open_recording(self, manifest: Manifest) -> None:
+    def _open_recording(self, manifest: Manifest, path: Path, services: bool) -> None:
         """Every component with a stream recorded (its messages, or the commands it takes), in simulated time."""
         import json
 
@@ -331,6 +336,8 @@ class Simulation:
                 ros = [s.endpoint for s in streams if s.middleware == "ros" and s.direction == direction]
                 plans.append(plan_stream(request, schema, cls.message_schema(entry.level), ros))
                 taps.append((self.by_name[entry.fqn], direction))
+                if plans[-1].note:
+                    log.warning("%s: %s", entry.fqn, plans[-1].note)
         details = self.requests.exposed["simulation"].obj.details()
         metadata = {"morsec": {
             "version": __version__, "frequency": repr(manifest.loop.frequency),
@@ -339,8 +346,7 @@ class Simulation:
             "details": json.dumps(details),
             "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
         try:
-            self.recorder = Recorder(Path(self.options.record), self.clock.now, plans, metadata,
-                                     services=self.options.record_services)
+            self.recorder = Recorder(path, self.clock.now, plans, metadata, services=services)
         except MorsecError:
             self.close()
             raise
@@ -350,7 +356,7 @@ class Simulation:
                 comp.out_streams.append(tap)
             else:
                 comp.recording = tap
-        if self.options.record_services:
+        if services:
             self.recorder.watch(self.requests.on_request)
             self.requests.on_leave.append(self.recorder.forget)
 

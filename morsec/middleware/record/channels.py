@@ -48,6 +48,7 @@ class StreamPlan:
     channels: tuple[Channel, ...]
     serialiser: str | None = None  # the ROS serialiser converting it (None: JSON only)
     endpoint: dict[str, Any] = field(default_factory=dict)  # its ROS stream's endpoint (frames, laser geometry)
+    note: str = ""  # why a stream ROS has a message for is recorded as JSON only
 
 
 def ros2_type(ros1: str) -> str:
@@ -92,14 +93,21 @@ def plan_stream(request: StreamRequest, schema_name: str, json_schema: dict[str,
     text = json.dumps({"$schema": JSON_SCHEMA_DIALECT, **json_schema}, ensure_ascii=False)
     channels = [Channel(request.component, schema_name, "jsonschema", text)]
     endpoint = ros_endpoint(request, ros_streams)
-    serialiser = None
-    if endpoint is not None and SERIALISERS[endpoint["serialiser"]].direction == request.direction:
-        outputs = ros2_outputs(endpoint["serialiser"], endpoint["topic"])
-        if outputs:
-            serialiser = endpoint["serialiser"]
-            channels += [Channel(topic, ros_type, "ros2msg") for topic, ros_type in outputs]
-    return StreamPlan(request.component, request.direction, tuple(channels), serialiser,
-                      endpoint if serialiser else {})
+    if endpoint is None or SERIALISERS[endpoint["serialiser"]].direction != request.direction:
+        return StreamPlan(request.component, request.direction, tuple(channels))
+    from morsec.middleware.record.ros2 import CONVERTERS
+    name = endpoint["serialiser"]
+    outputs = ros2_outputs(name, endpoint["topic"])
+    fields = json_schema.get("properties")
+    needs = CONVERTERS[name].needs if name in CONVERTERS else ()
+    missing = [f for f in needs if fields is not None and f not in fields]
+    if not outputs or missing:
+        what = ros2_type(SERIALISERS[name].message)
+        note = (f"recorded as JSON only: its messages have no {', '.join(missing)} for a {what}" if missing else
+                f"recorded as JSON only: ROS 2 has no {what} in the message packages morsec writes")
+        return StreamPlan(request.component, request.direction, tuple(channels), note=note)
+    channels += [Channel(topic, ros_type, "ros2msg") for topic, ros_type in outputs]
+    return StreamPlan(request.component, request.direction, tuple(channels), name, endpoint)
 
 
 def _schema(title: str, properties: dict[str, Any]) -> str:

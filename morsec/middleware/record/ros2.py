@@ -2,7 +2,7 @@
 as the ROS middleware's `conversions` build the ROS 1 ones: the same fields, stamps (the data's simulated
 time) and frames, with ROS 2's differences (no header seq; builtin_interfaces/Time; CameraInfo's d, k, r, p;
 frame ids without the leading '/', which tf2 refuses). Messages of a fixed layout are packed by `cdr`; those
-of variable size are rosbags' message classes serialised by its typestore. Runs in the writer process."""
+of variable size are rosbags" message classes serialised by its typestore. Runs in the writer process."""
 
 from __future__ import annotations
 
@@ -44,8 +44,10 @@ class Converter:
     """Turns one stream's data into a list of CDR messages, one per output of `channels.ros2_outputs` (None:
     nothing on that output this time)."""
 
+    needs: tuple[str, ...] = ()  # the fields its data must have (a component's level may lack them)
+
     def __init__(self, store: Any, endpoint: dict[str, Any]):
-        self.store = store  # rosbags' typestore: message classes (store.types) and their serialiser
+        self.store = store  # rosbags" typestore: message classes (store.types) and their serialiser
         self.endpoint = endpoint
         self.frame_id = frame(endpoint.get("frame_id"))
         self.child_frame_id = frame(endpoint.get("child_frame_id"))
@@ -73,6 +75,8 @@ def transform_layout(parent: str, child: str):
 
 
 class PoseStamped(Converter):
+    needs = ("x", "y", "z")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -84,6 +88,8 @@ class PoseStamped(Converter):
 
 
 class Pose(Converter):
+    needs = ("x", "y", "z")
+
     pack = Layout().add("d", 7).struct().pack
 
     def convert(self, data):
@@ -91,6 +97,8 @@ class Pose(Converter):
 
 
 class PoseWithCovariance(Converter):
+    needs = ("x", "y", "z")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -102,6 +110,8 @@ class PoseWithCovariance(Converter):
 
 
 class PoseTf(Converter):
+    needs = ("x", "y", "z")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         self.pack, self.parent, self.child = transform_layout(self.frame_id, self.child_frame_id or "base_link")
@@ -147,6 +157,8 @@ class StaticTf2(StaticTf):
 class Odometry(Converter):
     """nav_msgs/Odometry in frame_id of child_frame_id, and that transform on /tf."""
 
+    needs = ("x", "y", "z")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -165,6 +177,8 @@ class Odometry(Converter):
 
 
 class Imu(Converter):
+    needs = ("angular_velocity", "linear_acceleration")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -185,6 +199,8 @@ class Imu(Converter):
 
 
 class NavSatFix(Converter):
+    needs = ("latitude", "longitude", "altitude")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -199,6 +215,8 @@ class NavSatFix(Converter):
 
 
 class TwistStamped(Converter):
+    needs = ("linear_velocity", "angular_velocity")
+
     def __init__(self, store, endpoint):
         super().__init__(store, endpoint)
         layout = Layout()
@@ -219,6 +237,8 @@ class Clock(Converter):
 
 class LaserScan(Converter):
     """The ranges from -scan_window/2 to +scan_window/2 (MORSE's)."""
+
+    needs = ("range_list",)
 
     def convert(self, data):
         g = self.endpoint.get("geometry", {})
@@ -243,6 +263,8 @@ class JointState(Converter):
 class Image(Converter):
     """rgba8 pixels on <topic>/image and the camera's CameraInfo on <topic>/camera_info."""
 
+    needs = ("image", "width", "height", "intrinsic_matrix")
+
     def convert(self, data):
         image = data.get("image")
         if image is None:
@@ -264,6 +286,8 @@ class Image(Converter):
 
 class PointCloud2(Converter):
     """x, y, z float32 in the camera's optical frame."""
+
+    needs = ("points",)
 
     def convert(self, data):
         t = self.store.types
