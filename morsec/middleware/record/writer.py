@@ -9,7 +9,6 @@ the standard input ends: when the run closes the recording, whether it ended nor
 
 from __future__ import annotations
 
-import marshal
 import os
 import pickle
 import signal
@@ -80,11 +79,9 @@ class Recording:
         """One entry of a batch (see recorder.Recorder.batch)."""
         if len(entry) == 2:
             self.keys[entry[0]] = entry[1]
-        elif len(entry) == 3:
-            index, seconds, values = entry
-            self.add(index, seconds, dict(zip(self.keys[index], marshal.loads(values))))
         else:
-            self.add(entry[0], entry[1], pickle.loads(entry[2]))
+            index, seconds, values = entry
+            self.add(index, seconds, dict(zip(self.keys[index], pickle.loads(values))))
 
     def add(self, index: int, seconds: float, message: dict) -> None:
         component, json_channel, ros_channels, convert = self.streams[index]
