@@ -60,10 +60,10 @@ def read_all(path: Path) -> dict:
         assert summary is not None, "a finished MCAP file has a summary"
         metadata = {m.name: m.metadata for m in reader.iter_metadata()}
         messages: dict[str, list] = {}
-        for schema, channel, message, decoded in reader.iter_decoded_messages(
+        for _schema, channel, message, decoded in reader.iter_decoded_messages(
                 topics=[c.topic for c in summary.channels.values() if c.message_encoding == "cdr"]):
             messages.setdefault(channel.topic, []).append((message, decoded))
-        for schema, channel, message in reader.iter_messages(
+        for _schema, channel, message in reader.iter_messages(
                 topics=[c.topic for c in summary.channels.values() if c.message_encoding == "json"]):
             messages.setdefault(channel.topic, []).append((message, json.loads(message.data)))
     channels = {c.topic: (c, summary.schemas[c.schema_id]) for c in summary.channels.values()}
@@ -90,7 +90,7 @@ def recording(tmp_path_factory):
 # ------------------------------------------------------------------------------------------- the table
 def test_every_ros_serialiser_has_a_ros2_converter_and_its_messages_exist_in_ros2():
     """One table (the ROS middleware's): each of its serialisers is recorded as ROS 2 or said not to be."""
-    for name, serialiser in SERIALISERS.items():
+    for name in SERIALISERS:
         if name in NO_ROS2:
             assert name not in CONVERTERS
             continue
@@ -269,7 +269,7 @@ def test_every_stream_is_recorded_with_its_ros2_message_and_its_json(recording):
     for topic, expected in EXPECTED_CHANNELS.items():
         assert found.get(topic) == expected, topic
     assert "/robot/battery" not in found  # ROS has no message for a battery: JSON only
-    for topic, (channel, schema) in read["channels"].items():
+    for topic, (_channel, schema) in read["channels"].items():
         if schema.encoding == "ros2msg":
             assert schema.data.decode() == STORE.generate_msgdef(schema.name, ros_version=2)[0]
             assert read["messages"].get(topic), f"{topic}: no message"
@@ -281,7 +281,7 @@ def test_every_stream_is_recorded_with_its_ros2_message_and_its_json(recording):
 
 def test_json_messages_follow_their_schema_and_are_logged_at_their_simulated_time(recording):
     read = recording["read"]
-    for topic, (channel, schema) in read["channels"].items():
+    for topic, (_channel, schema) in read["channels"].items():
         if schema.encoding != "jsonschema":
             continue
         validator = jsonschema.Draft202012Validator(json.loads(schema.data))

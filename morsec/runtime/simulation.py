@@ -11,7 +11,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mujoco
 import numpy as np
@@ -28,6 +28,9 @@ from morsec.runtime.requests import RequestManager, services_of
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
+
+if TYPE_CHECKING:
+    from morsec.middleware.record.recorder import Recorder
 
 log = logging.getLogger("morsec.runtime")
 
@@ -218,7 +221,7 @@ class Simulation:
             self.requests.expose(name, obj, services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
-        self.recorder = None
+        self.recorder: Recorder | None = None
         record = self.options.record
         record_services = self.options.record_services
         if record is None and env.get("record"):  # the scene's env.record: in the run's output folder
@@ -328,7 +331,7 @@ class Simulation:
             streams = self.streams_of.get(entry.fqn)
             if not streams:
                 continue
-            cls = load_class(entry.component)
+            cls = load_class(entry.component, entry.component.name)  # a Device: its message schema
             ref = entry.component
             schema = f"morsec/{ref.kind}/{ref.id}" + (f"/{entry.level}" if entry.level else "")
             for direction in dict.fromkeys(s.direction for s in streams):
@@ -346,19 +349,19 @@ class Simulation:
             "details": json.dumps(details),
             "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
         try:
-            self.recorder = Recorder(path, self.clock.now, plans, metadata, services=services)
+            recorder = self.recorder = Recorder(path, self.clock.now, plans, metadata, services=services)
         except MorsecError:
             self.close()
             raise
         for index, (comp, direction) in enumerate(taps):
-            tap = self.recorder.stream(index)
+            tap = recorder.stream(index)
             if direction == "OUT":
                 comp.out_streams.append(tap)
             else:
                 comp.recording = tap
         if services:
-            self.recorder.watch(self.requests.on_request)
-            self.requests.on_leave.append(self.recorder.forget)
+            recorder.watch(self.requests.on_request)
+            self.requests.on_leave.append(recorder.forget)
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
