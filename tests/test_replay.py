@@ -152,3 +152,15 @@ def test_a_file_that_is_not_a_recording_is_refused_in_one_line(tmp_path):
     bad_rate = subprocess.run([str(MORSEC), "replay", str(plain), "--rate", "0"], capture_output=True, text=True,
                               timeout=60)
     assert bad_rate.returncode == 2 and bad_rate.stderr.strip() == "error: --rate must be a positive number, got 0.0"
+
+
+def test_info_lists_what_the_recording_holds(recorded):
+    result = subprocess.run([str(MORSEC), "replay", str(recorded["path"]), "--info"], capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stderr
+    head, *rows = result.stdout.splitlines()
+    assert head.startswith(f"{recorded['path']}: ") and "simulated s" in head and "since the Unix epoch" in head
+    table = {row.split()[0]: row.split()[1:] for row in rows}
+    assert table["robot.pose"] == [str(len(recorded["poses"])), "json", "morsec/sensors/pose", "(jsonschema)"]
+    assert table["/robot/pose"] == [str(len(recorded["poses"])), "cdr", "geometry_msgs/msg/PoseStamped", "(ros2msg)"]
+    assert table["robot.motion"][:2] == ["1", "json"]

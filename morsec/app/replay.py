@@ -64,8 +64,7 @@ def read_recording(path: Path) -> Recorded:
     except OSError as err:
         raise MorsecError(f"{path}: {err.strerror or err}") from None
     except (McapError, ValueError, EOFError) as err:
-        raise MorsecError(f"{path}: not a readable MCAP file ({err}); a recording cut short is read by "
-                          "`mcap recover` (docs/recording.md)") from None
+        raise MorsecError(f"{path}: not a readable MCAP file ({err})") from None
     if metadata is None or summary is None:
         raise MorsecError(f"{path}: not a recording made by `morsec run --record` (no morsec metadata)")
     streams = json.loads(metadata["streams"])
@@ -77,6 +76,28 @@ def read_recording(path: Path) -> Recorded:
     stats = summary.statistics
     return Recorded(json.loads(metadata["details"]), streams, sensors, stats.message_start_time if stats else 0,
                     stats.message_end_time if stats else 0, number)
+
+
+def describe_recording(path: Path) -> str:
+    """What `morsec replay --info` prints: the time span, and each channel with its schema and message count."""
+    from mcap.reader import make_reader
+    recorded = read_recording(path)  # a file that is not a recording: one line
+    with open(path, "rb") as f:
+        reader = make_reader(f)
+        summary = reader.get_summary()
+        metadata = next(m.metadata for m in reader.iter_metadata() if m.name == "morsec")
+    assert summary is not None and summary.statistics is not None
+    counts = summary.statistics.channel_message_counts
+    origin = ("since the start" if metadata.get("time_origin") == "start" else
+              "since the Unix epoch, the clock starting at the wall-clock time of the start")
+    lines = [f"{path}: {summary.statistics.message_count} messages over {(recorded.end - recorded.start) / 1e9:.3f} "
+             f"simulated s, recorded by morsec {metadata['version']} (log times: simulated time {origin})"]
+    width = max(len(c.topic) for c in summary.channels.values())
+    for channel in sorted(summary.channels.values(), key=lambda c: c.topic):
+        schema = summary.schemas[channel.schema_id]
+        lines.append(f"  {channel.topic:<{width}}  {counts.get(channel.id, 0):>7}  {channel.message_encoding:<4}  "
+                     f"{schema.name} ({schema.encoding})")
+    return "\n".join(lines)
 
 
 class Replay:

@@ -96,12 +96,20 @@ def replay(
         help=f"first stream port instead of {STREAM_PORT_BASE} (0: ports the OS picks)")] = None,
     wait_for_client: Annotated[bool, typer.Option(
         "--wait-for-client", help="start replaying at a client's first request or stream connection")] = False,
+    info: Annotated[bool, typer.Option(
+        "--info", help="print what the recording holds (channels, schemas, message counts) and exit")] = False,
 ) -> None:
     """Serve a recording's sensor streams again on the socket ports of its scene, at the recorded pace."""
     import signal
     import sys
 
-    from morsec.app.replay import Replay, ReplayOptions
+    from morsec.app.replay import Replay, ReplayOptions, describe_recording
+    if info:
+        try:
+            typer.echo(describe_recording(recording))
+        except MorsecError as err:
+            fail(err)
+        return
     if not rate > 0:
         fail(MorsecError(f"--rate must be a positive number, got {rate}"))
     for name, value in (("--service-port", service_port), ("--port-base", port_base)):

@@ -344,8 +344,8 @@ class Simulation:
         details = self.requests.exposed["simulation"].obj.details()
         metadata = {"morsec": {
             "version": __version__, "frequency": repr(manifest.loop.frequency),
-            "time": "simulated" + (" (s since the start)" if self.clock.origin == 0.0 else
-                                   " (s since the Unix epoch, starting at the wall-clock time of the start)"),
+            "time": "simulated",  # log times: the simulated time of each message, in ns
+            "time_origin": "start" if self.clock.origin == 0.0 else "unix_epoch",  # environment.time.relative
             "details": json.dumps(details),
             "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
         try:
