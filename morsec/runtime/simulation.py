@@ -550,6 +550,8 @@ class Simulation:
                     streams.append((what, direction, name, where))
                 else:
                     lines.append(f"  {what:<14} {where}" + (f"  ({pseudo})" if what == "services" else ""))
+        if self.recorder is not None:
+            lines.append(f"  {'recording':<14} {self.recorder.path}")
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")

@@ -8,7 +8,8 @@ The loop only copies each message as it is published (sensors reuse their data d
 pickling the dict costs (an OrderedDict pickles through Python code).
 Every BATCH messages, BATCH_BYTES or BATCH_AGE wall-clock seconds, the batch is pickled and written to the
 writer's pipe without blocking: what the pipe does not take waits in memory and goes at the next batch, so
-that the loop does not wait for a writer that lags behind (on a busy machine) until MAX_PENDING bytes wait.
+that the loop does not wait for a writer that lags behind until MAX_PENDING bytes wait. The writer runs at a
+lower priority (nice 10): on a machine whose cores are all busy it is the one that lags, not the loop.
 Closing the recording sends what is left and waits for the writer to finish the file."""
 
 from __future__ import annotations

@@ -111,6 +111,9 @@ def main(argv: list[str]) -> int:
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, signal.SIG_IGN)
     fd, path = int(argv[0]), argv[1]
+    # the simulation first: on a machine whose cores are busy, the writer lags (the loop's process keeps what the
+    # pipe does not take) and catches up when it can, at the latest at the end of the run
+    os.nice(10)
     recording = None
     try:
         with os.fdopen(fd, "wb", buffering=1 << 20) as out:
