@@ -26,6 +26,7 @@ from morsec.middleware.record.channels import NO_ROS2, ROS2_DISTRIBUTION, plan_s
 from morsec.middleware.record.ros2 import CONVERTERS
 from morsec.middleware.ros.serialisers import SERIALISERS
 from tests.runtime_helpers import MORSEC, Morsec, scene, scene_file
+from tests.test_ros import ros_master  # noqa: F401 (a roscore of this module's own)
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE_READER = ROOT / "tests" / "node" / "read_mcap.mjs"
@@ -105,21 +106,26 @@ def test_a_component_with_a_ros_stream_is_recorded_as_that_stream():
     default = plan_stream(request, "morsec/sensors/pose", {"properties": {"x": {}, "y": {}, "z": {}}}, [])
     assert [(c.topic, c.schema, c.encoding) for c in default.channels] == [
         ("robot.pose", "morsec/sensors/pose", "jsonschema"), ("/robot/pose", "geometry_msgs/msg/PoseStamped", "ros2msg")]
-    assert default.endpoint["frame_id"] == "/map"
-    tf = {"topic": "/rover/where", "serialiser": "pose_tf", "message": "tf2_msgs/TFMessage", "frame_id": "/world",
+    [(conversion)] = default.conversions
+    assert (conversion.serialiser, conversion.endpoint["frame_id"], conversion.channels) == ("pose_stamped", "/map", (1,))
+    stamped = {"topic": "/rover/where", "serialiser": "pose_stamped", "message": "geometry_msgs/PoseStamped",
+               "frame_id": "/map"}
+    tf = {"topic": "/robot/pose", "serialiser": "pose_tf", "message": "tf2_msgs/TFMessage", "frame_id": "/world",
           "child_frame_id": "/rover"}
-    named = plan_stream(request, "morsec/sensors/pose", {}, [tf])
-    assert [(c.topic, c.schema) for c in named.channels[1:]] == [("/tf", "tf2_msgs/msg/TFMessage")]
-    assert named.serialiser == "pose_tf" and named.endpoint["child_frame_id"] == "/rover"
+    named = plan_stream(request, "morsec/sensors/pose", {}, [stamped, tf])
+    assert [(c.topic, c.schema) for c in named.channels[1:]] == [
+        ("/rover/where", "geometry_msgs/msg/PoseStamped"), ("/tf", "tf2_msgs/msg/TFMessage")]
+    assert [(c.serialiser, c.channels) for c in named.conversions] == [("pose_stamped", (1,)), ("pose_tf", (2,))]
+    assert named.conversions[1].endpoint["child_frame_id"] == "/rover"
 
 
 def test_a_level_without_the_fields_of_its_ros_message_is_recorded_as_json_only():
     request = StreamRequest("robot.odo", "OUT", {}, ("odometry",), {})
     plan = plan_stream(request, "morsec/sensors/odometry/differential", {"properties": {"dx": {}, "dy": {}}}, [])
-    assert [c.topic for c in plan.channels] == ["robot.odo"] and plan.serialiser is None
-    assert plan.note == "recorded as JSON only: its messages have no x, y, z for a nav_msgs/msg/Odometry"
+    assert [c.topic for c in plan.channels] == ["robot.odo"] and plan.conversions == ()
+    assert plan.notes == ("recorded as JSON only: its messages have no x, y, z for a nav_msgs/msg/Odometry",)
     battery = plan_stream(StreamRequest("robot.battery", "OUT", {}, ("battery",), {}), "b", {}, [])
-    assert [c.topic for c in battery.channels] == ["robot.battery"] and battery.note == ""
+    assert [c.topic for c in battery.channels] == ["robot.battery"] and battery.notes == ()
 
 
 # ------------------------------------------------------------------------------------------- converters
@@ -390,6 +396,42 @@ def test_a_killed_run_leaves_a_readable_recording_of_what_it_had_sent(tmp_path):
     assert len(read["messages"]["robot.pose"]) >= 30  # the batches sent every half second
 
 
+# ------------------------------------------------------------------------------------------- a ROS scene
+@pytest.mark.usefixtures("ros_master")
+def test_a_builder_scene_streaming_to_ros_records_its_ros_streams_as_ros_carries_them(tmp_path):
+    """Real ROS (a roscore): the pose's two ROS streams, named as MORSE scripts name them, recorded as they are
+    published, and the recording made by the scene's env.record."""
+    from morsec.app.project import build_scene
+    source = tmp_path / "rover.py"
+    source.write_text(textwrap.dedent("""
+        from morse.builder import *
+        robot = ATRV()
+        pose = Pose()
+        pose.add_stream('ros', 'morse.middleware.ros.pose.PoseStampedPublisher', topic='/rover/where')
+        pose.add_stream('ros', method='morse.middleware.ros.pose.TFPublisher')
+        robot.append(pose)
+        robot.translate(x=2.0)
+        motion = MotionVW()
+        motion.add_interface('ros')
+        robot.append(motion)
+        env = Environment('empty')
+        env.record('rover.mcap')
+    """), encoding="utf-8")
+    build = build_scene(source, tmp_path / "build")
+    result = subprocess.run([str(MORSEC), "run", str(build), "--duration", "1", "--time-strategy", "fixed_step",
+                             "--port-base", "0", "--service-port", "0"], capture_output=True, text=True, timeout=120,
+                            cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    read = read_all(tmp_path / "rover.mcap")
+    assert {t: s.name for t, (_, s) in read["channels"].items() if s.encoding == "ros2msg"} == {
+        "/rover/where": "geometry_msgs/msg/PoseStamped", "/tf": "tf2_msgs/msg/TFMessage",
+        "/robot/motion": "geometry_msgs/msg/Twist"}
+    where = read["messages"]["/rover/where"]
+    assert len(where) == 60 and where[0][1].pose.position.x == pytest.approx(2.0, abs=0.05)
+    transform = read["messages"]["/tf"][0][1].transforms[0]
+    assert (transform.header.frame_id, transform.child_frame_id) == ("map", "base_link")
+
+
 # ------------------------------------------------------------------------------------------- scenes and errors
 def test_a_scene_records_every_run_with_env_record(tmp_path):
     source = scene_file(tmp_path, scene(environment={"record": {"file": "runs/scene.mcap", "services": True}}))
@@ -443,3 +485,17 @@ def test_record_mistakes_on_the_command_line_are_one_line(tmp_path):
     assert unwritable.returncode == 2, unwritable.stderr
     assert unwritable.stderr.strip().startswith(f"error: cannot write the recording {tmp_path / 'taken' / 'run.mcap'}")
     assert "Traceback" not in unwritable.stderr
+
+
+def test_a_recording_that_cannot_be_written_ends_the_run_saying_so(tmp_path):
+    """/dev/full: every write fails (no space left), as on a full disk."""
+    source = scene_file(tmp_path, scene())
+    result = subprocess.run([str(MORSEC), "run", str(source), "--duration", "0.5", "--port-base", "0",
+                             "--service-port", "0", "--record", "/dev/full"], capture_output=True, text=True,
+                            timeout=120)
+    assert result.returncode == 1, result.stderr
+    lines = result.stderr.strip().splitlines()
+    assert "ERROR morsec.record: cannot write the recording /dev/full: No space left on device" in lines
+    assert lines[-1] == ("error: the recording /dev/full is incomplete: its writer ended with code 1 "
+                         "(its error is above)")
+    assert "Traceback" not in result.stderr

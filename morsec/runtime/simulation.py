@@ -339,8 +339,8 @@ class Simulation:
                 ros = [s.endpoint for s in streams if s.middleware == "ros" and s.direction == direction]
                 plans.append(plan_stream(request, schema, cls.message_schema(entry.level), ros))
                 taps.append((self.by_name[entry.fqn], direction))
-                if plans[-1].note:
-                    log.warning("%s: %s", entry.fqn, plans[-1].note)
+                for note in plans[-1].notes:
+                    log.warning("%s: %s", entry.fqn, note)
         details = self.requests.exposed["simulation"].obj.details()
         metadata = {"morsec": {
             "version": __version__, "frequency": repr(manifest.loop.frequency),

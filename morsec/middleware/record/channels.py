@@ -15,7 +15,7 @@ mcap and rosbags."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from morsec.middleware.base import StreamRequest
@@ -40,15 +40,24 @@ class Channel:
 
 
 @dataclass(frozen=True)
+class Conversion:
+    """One ROS stream of a recorded stream: its serialiser, converting the data, and the ROS stream's endpoint
+    (topic, frames, laser geometry); its messages go to `channels` (indices in the plan's channels)."""
+
+    serialiser: str
+    endpoint: dict[str, Any]
+    channels: tuple[int, ...]
+
+
+@dataclass(frozen=True)
 class StreamPlan:
-    """One recorded stream: its JSON channel first, then the ROS 2 channels its serialiser fills."""
+    """One recorded stream: its JSON channel first, then the ROS 2 channels its ROS streams fill."""
 
     component: str
     direction: str  # OUT: a sensor's messages; IN: the commands an actuator took
     channels: tuple[Channel, ...]
-    serialiser: str | None = None  # the ROS serialiser converting it (None: JSON only)
-    endpoint: dict[str, Any] = field(default_factory=dict)  # its ROS stream's endpoint (frames, laser geometry)
-    note: str = ""  # why a stream ROS has a message for is recorded as JSON only
+    conversions: tuple[Conversion, ...] = ()  # none: JSON only
+    notes: tuple[str, ...] = ()  # why a ROS stream of it is recorded as JSON only
 
 
 def ros2_type(ros1: str) -> str:
@@ -73,16 +82,16 @@ def ros2_outputs(serialiser: str, topic: str) -> tuple[tuple[str, str], ...]:
     return outputs + ((("/tf", TF),) if entry.tf else ())
 
 
-def ros_endpoint(request: StreamRequest, ros_streams: list[dict[str, Any]]) -> dict[str, Any] | None:
-    """The ROS stream a component is recorded as: the scene's own (the first), else the default ROS stream of
-    its type; None when ROS has no message for it."""
+def ros_endpoints(request: StreamRequest, ros_streams: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The ROS streams a component is recorded as: the scene's own, else the default ROS stream of its type
+    (none when ROS has no message for it)."""
     if ros_streams:
-        return ros_streams[0]
+        return ros_streams
     from morsec.middleware.ros.middleware import Ros
     try:
-        return Ros.assign([request])[0]
+        return Ros.assign([request])
     except ValueError:
-        return None
+        return []
 
 
 def plan_stream(request: StreamRequest, schema_name: str, json_schema: dict[str, Any],
@@ -90,24 +99,32 @@ def plan_stream(request: StreamRequest, schema_name: str, json_schema: dict[str,
     """The channels of one component's stream. `json_schema`: its message's JSON Schema; `ros_streams`: the
     endpoints of the component's ROS streams in the scene, if any."""
     import json
+
+    from morsec.middleware.record.ros2 import CONVERTERS
     text = json.dumps({"$schema": JSON_SCHEMA_DIALECT, **json_schema}, ensure_ascii=False)
     channels = [Channel(request.component, schema_name, "jsonschema", text)]
-    endpoint = ros_endpoint(request, ros_streams)
-    if endpoint is None or SERIALISERS[endpoint["serialiser"]].direction != request.direction:
-        return StreamPlan(request.component, request.direction, tuple(channels))
-    from morsec.middleware.record.ros2 import CONVERTERS
-    name = endpoint["serialiser"]
-    outputs = ros2_outputs(name, endpoint["topic"])
+    conversions, notes = [], []
     fields = json_schema.get("properties")
-    needs = CONVERTERS[name].needs if name in CONVERTERS else ()
-    missing = [f for f in needs if fields is not None and f not in fields]
-    if not outputs or missing:
-        what = ros2_type(SERIALISERS[name].message)
-        note = (f"recorded as JSON only: its messages have no {', '.join(missing)} for a {what}" if missing else
-                f"recorded as JSON only: ROS 2 has no {what} in the message packages morsec writes")
-        return StreamPlan(request.component, request.direction, tuple(channels), note=note)
-    channels += [Channel(topic, ros_type, "ros2msg") for topic, ros_type in outputs]
-    return StreamPlan(request.component, request.direction, tuple(channels), name, endpoint)
+    for endpoint in ros_endpoints(request, ros_streams):
+        name = endpoint["serialiser"]
+        if SERIALISERS[name].direction != request.direction:
+            continue
+        outputs = ros2_outputs(name, endpoint["topic"])
+        needs = CONVERTERS[name].needs if name in CONVERTERS else ()
+        missing = [f for f in needs if fields is not None and f not in fields]
+        if not outputs or missing:
+            what = ros2_type(SERIALISERS[name].message)
+            notes.append(f"recorded as JSON only: its messages have no {', '.join(missing)} for a {what}" if missing
+                         else f"recorded as JSON only: ROS 2 has no {what} in the message packages morsec writes")
+            continue
+        indices = []
+        for topic, ros_type in outputs:
+            channel = Channel(topic, ros_type, "ros2msg")
+            if channel not in channels:
+                channels.append(channel)
+            indices.append(channels.index(channel))
+        conversions.append(Conversion(name, endpoint, tuple(indices)))
+    return StreamPlan(request.component, request.direction, tuple(channels), tuple(conversions), tuple(notes))
 
 
 def _schema(title: str, properties: dict[str, Any]) -> str:

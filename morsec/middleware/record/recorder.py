@@ -15,7 +15,6 @@ Closing the recording sends what is left and waits for the writer to finish the 
 from __future__ import annotations
 
 import functools
-import logging
 import os
 import pickle
 import subprocess
@@ -27,11 +26,9 @@ from itertools import count
 from pathlib import Path
 from typing import Any
 
-from morsec.errors import MorsecError
+from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.record.channels import ANSWERS, REQUESTS, StreamPlan
 from morsec.middleware.record.writer import HEADER
-
-log = logging.getLogger("morsec.record")
 
 BATCH = 512  # messages per write to the writer's pipe
 BATCH_AGE = 0.5  # s of wall time a message waits at most before it is sent
@@ -133,10 +130,9 @@ class Recorder:
                     self.pending.popleft()
                 else:
                     self.pending[0] = self.pending[0][written:]
-        except OSError:  # the writer stopped (it said why on stderr)
+        except OSError:  # the writer stopped (it said why on stderr): the run says so when it ends
             self.failed = True
             self.pending.clear()
-            log.error("the recording %s stopped: its writer ended", self.path)
         finally:
             if block and not self.failed:
                 os.set_blocking(self.fd, False)
@@ -183,8 +179,9 @@ class Recorder:
         except subprocess.TimeoutExpired:
             self.process.kill()
             code = self.process.wait()
-        if code != 0:
-            log.error("the recording %s may be incomplete: its writer ended with code %s", self.path, code)
+        if code != 0 or self.failed:
+            raise RuntimeFailure(f"the recording {self.path} is incomplete: its writer ended with code {code} "
+                                 "(its error is above)")
 
 
 class RecordedStream:

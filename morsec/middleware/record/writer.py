@@ -51,8 +51,9 @@ class Recording:
         self.streams = []
         for plan in plans:
             ids = [self.channel(c) for c in plan.channels]
-            convert = converter(plan.serialiser, self.store, plan.endpoint) if plan.serialiser else None
-            self.streams.append((plan.component, ids[0], ids[1:], convert))
+            conversions = [(converter(c.serialiser, self.store, c.endpoint), [ids[i] for i in c.channels])
+                           for c in plan.conversions]
+            self.streams.append((plan.component, ids[0], conversions))
         self.keys: list[tuple] = [()] * len(plans)
         self.failed: set[tuple[str, str]] = set()
 
@@ -84,24 +85,22 @@ class Recording:
             self.add(index, seconds, dict(zip(self.keys[index], pickle.loads(values))))
 
     def add(self, index: int, seconds: float, message: dict) -> None:
-        component, json_channel, ros_channels, convert = self.streams[index]
+        component, json_channel, conversions = self.streams[index]
         nanoseconds = max(0, round(seconds * 1e9))
         self.write(json_channel, nanoseconds, self.encode(message)[:-1])
-        if convert is None:
-            return
-        try:
-            converted = convert.convert(message)
-        except Exception as err:  # data the converter cannot read (a level without its fields ...): said once
-            key = (component, f"{type(err).__name__}: {err}")
-            if key not in self.failed:
-                self.failed.add(key)
-                print(f"WARNING morsec.record: {component}: recorded as JSON only, its data makes no ROS 2 message "
-                      f"({key[1]})",
-                      file=sys.stderr, flush=True)
-            return
-        for channel, data in zip(ros_channels, converted):
-            if data is not None:
-                self.write(channel, nanoseconds, data)
+        for convert, channels in conversions:
+            try:
+                converted = convert.convert(message)
+            except Exception as err:  # data the converter cannot read (a value of another type ...): said once
+                key = (component, f"{type(err).__name__}: {err}")
+                if key not in self.failed:
+                    self.failed.add(key)
+                    print(f"WARNING morsec.record: {component}: a message made no ROS 2 message, recorded as JSON "
+                          f"only ({key[1]})", file=sys.stderr, flush=True)
+                continue
+            for channel, data in zip(channels, converted):
+                if data is not None:
+                    self.write(channel, nanoseconds, data)
 
     def finish(self) -> None:
         self.writer.finish()
