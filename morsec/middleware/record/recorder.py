@@ -106,7 +106,7 @@ class Recorder:
             self._send(("batch", batch))
 
     def _send(self, frame: Any) -> None:
-        if self.failed:
+        if self.failed or self.pipe is None:  # stopped, or closed (its descriptor may be another file's now)
             return
         body = pickle.dumps(frame, protocol=5)
         self.pending.append(memoryview(HEADER.pack(len(body)) + body))
