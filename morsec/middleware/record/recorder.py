@@ -15,6 +15,7 @@ Closing the recording sends what is left and waits for the writer to finish the 
 from __future__ import annotations
 
 import functools
+import logging
 import os
 import pickle
 import subprocess
@@ -29,6 +30,8 @@ from typing import Any
 from morsec.errors import MorsecError, RuntimeFailure
 from morsec.middleware.record.channels import ANSWERS, REQUESTS, StreamPlan
 from morsec.middleware.record.writer import HEADER
+
+log = logging.getLogger("morsec.record")
 
 BATCH = 512  # messages per write to the writer's pipe
 BATCH_AGE = 0.5  # s of wall time a message waits at most before it is sent
@@ -55,9 +58,11 @@ class Recorder:
         except OSError as err:
             raise MorsecError(f"cannot write the recording {self.path}: {err.strerror or err}") from None
         with out:
+            # a session of its own: a Ctrl-C at the terminal, or a signal to the run's process group, stops the
+            # run, which then closes the recording; the writer ends when its input does
             self.process = subprocess.Popen([sys.executable, "-m", "morsec.middleware.record.writer",
                                              str(out.fileno()), str(self.path)],
-                                            stdin=subprocess.PIPE, pass_fds=(out.fileno(),))
+                                            stdin=subprocess.PIPE, pass_fds=(out.fileno(),), start_new_session=True)
         self.pipe = self.process.stdin
         try:
             import fcntl
@@ -73,6 +78,7 @@ class Recorder:
         self.batch_bytes = 0
         self.oldest = 0.0
         self.failed = False
+        self.unrecordable: set[int] = set()  # streams whose message could not be copied (said once)
         self.clients: dict[Any, int] = {}
         self.numbers = count(1)
         self._send(("start", metadata, self.plans))
@@ -93,7 +99,14 @@ class Recorder:
         if keys != self.keys[index]:
             self.keys[index] = keys
             self.batch.append((index, keys))
-        payload = pickle.dumps(tuple(message.values()), protocol=5)
+        try:
+            payload = pickle.dumps(tuple(message.values()), protocol=5)
+        except Exception as err:  # a value pickle cannot copy (a component's own object): not recorded
+            if index not in self.unrecordable:
+                self.unrecordable.add(index)
+                log.error("%s: a message was not recorded: %s: %s", self.plans[index].component,
+                          type(err).__name__, err)
+            return
         self.batch.append((index, when, payload))
         self.batch_bytes += len(payload)
         if (len(self.batch) >= BATCH or self.batch_bytes >= BATCH_BYTES
@@ -152,8 +165,8 @@ class Recorder:
             reply = request.reply
 
             def answer(request_id, status, result) -> None:
-                self.add(answers, {**about, "status": status, "result": result})
                 reply(request_id, status, result)
+                self.add(answers, {**about, "status": status, "result": result})
 
             request.reply = answer
 
