@@ -164,3 +164,19 @@ def test_info_lists_what_the_recording_holds(recorded):
     assert table["robot.pose"] == [str(len(recorded["poses"])), "json", "morsec/sensors/pose", "(jsonschema)"]
     assert table["/robot/pose"] == [str(len(recorded["poses"])), "cdr", "geometry_msgs/msg/PoseStamped", "(ros2msg)"]
     assert table["robot.motion"][:2] == ["1", "json"]
+
+
+def test_a_stream_recorded_from_a_text_stream_is_served_on_a_free_port(tmp_path):
+    pose = {"name": "pose", "type": "pose", "streams": [{"middleware": "text", "file": "pose.txt"}]}
+    motion = {"name": "motion", "type": "motion_vw", "streams": ["socket"]}
+    source = scene_file(tmp_path, scene({"name": "robot", "type": "atrv", "components": [pose, motion]}))
+    path = tmp_path / "text.mcap"
+    result = subprocess.run([str(MORSEC), "run", str(source), "--duration", "0.2", "--record", str(path),
+                             "--port-base", "0", "--service-port", "0"], capture_output=True, text=True, timeout=120,
+                            cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    replay = Replay(path, ReplayOptions(service_port=0))
+    try:
+        assert replay.socket.ports() == {"robot.motion": STREAM_PORT_BASE, "robot.pose": STREAM_PORT_BASE + 1}
+    finally:
+        replay.close()
