@@ -38,6 +38,8 @@ BUILD_ONLY = ("yourdfpy", "trimesh", "scipy", "networkx", "lxml", "jinja2", "xac
 SWEEP_ONLY = ("dask", "distributed", "pandas", "pyarrow", "matplotlib", "morsec.app.sweep")
 # what only `morsec run --foxglove` needs: Foxglove's server
 FOXGLOVE_ONLY = ("foxglove", "morsec.runtime.foxglove")
+# what only a recording needs (`morsec run --record`): MCAP, ROS 2's messages, the recorder
+RECORD_ONLY = ("mcap", "rosbags", "morsec.middleware.record", "morsec.app.replay")
 
 AT_SCENE_INITIALIZED = """\
 import gc, json, sys
@@ -72,7 +74,7 @@ def scene(tmp_path) -> Path:
 
 def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
     build = build_scene(scene, tmp_path / "build")
-    result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY), "run", str(build), "--duration", "0.05",
+    result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY), "run", str(build), "--duration", "0.05",
                         "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
     line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))
     report = json.loads(line.removeprefix("MODULES "))

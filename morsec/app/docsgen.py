@@ -59,6 +59,8 @@ SECTIONS = (
             "`configure_stream_manager(middleware, ...)`: one entry per middleware name."),
     Section("multinode", "environment.multinode", "MultinodeSpec",
             "`configure_multinode(...)`: which node simulates which robots."),
+    Section("record", "environment.record", "RecordSpec",
+            "`env.record(file, services=False)`: every run recorded in MCAP ([recording](recording.md))."),
     Section("robots", "robots[]", "robot",
             "A robot from the catalogue with its components. The keys `properties` depend on the robot's "
             "`type`: see [the component list](components.md)."),

@@ -19,7 +19,8 @@ from morsec import __version__
 
 # command -> the module of morsec.cli defining it (a function of the same name), in the order --help lists them
 COMMANDS = {
-    "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "docs": "catalogue",
+    "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "replay": "running",
+    "docs": "catalogue",
     "render": "running", "components": "catalogue", "convert": "scenes", "create": "scaffold", "add": "scaffold",
     "rm": "scaffold", "import-blend": "scaffold", "sweep": "sweeping",
 }

@@ -1,4 +1,4 @@
-"""Commands that run a scene: run, render."""
+"""Commands that run a scene: run, render, replay."""
 
 from __future__ import annotations
 
@@ -54,6 +54,11 @@ def run(
         "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
         "simulation ends when the service clients that made requests have all left (runs started with their "
         "client, as `morsec sweep` does)")] = False,
+    record: Annotated[Path | None, typer.Option(
+        help="record every stream into this MCAP file, in simulated time (ROS 2 messages where ROS has them, "
+        "JSON otherwise; docs/recording.md)")] = None,
+    record_services: Annotated[bool, typer.Option(
+        "--record-services", help="also record the service requests and their answers (with --record)")] = False,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -72,17 +77,66 @@ def run(
             fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
     if seed is not None and seed < 0:
         fail(MorsecError(f"--seed must be 0 or more, got {seed}"))
+    if record_services and record is None:
+        fail(MorsecError("--record-services records into the file --record names: give --record FILE.mcap"))
     try:
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
                              output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client,
-                             foxglove=foxglove_port if foxglove else None)
+                             foxglove=foxglove_port if foxglove else None,
+                             record=record, record_services=record_services)
         simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)
     factor = f" ({simulated / wall:.1f}x real time)" if wall > 0 else ""
     typer.echo(f"simulated {simulated:.6f} s in {wall:.3f} s{factor}")
+    typer.echo("EXITING SIMULATION")
+
+
+def replay(
+    recording: Annotated[Path, typer.Argument(help="an MCAP file made by morsec run --record")],
+    rate: Annotated[float, typer.Option(help="recorded (simulated) seconds per wall-clock second")] = 1.0,
+    bind: Annotated[str, typer.Option(help="address the servers listen on")] = DEFAULT_BIND,
+    service_port: Annotated[int | None, typer.Option(
+        help=f"service port (default {SERVICE_PORT}, else the next {SERVICE_PORT_ATTEMPTS} ports)")] = None,
+    port_base: Annotated[int | None, typer.Option(
+        help=f"first stream port instead of {STREAM_PORT_BASE} (0: ports the OS picks)")] = None,
+    wait_for_client: Annotated[bool, typer.Option(
+        "--wait-for-client", help="start replaying at a client's first request or stream connection")] = False,
+    info: Annotated[bool, typer.Option(
+        "--info", help="print what the recording holds (channels, schemas, message counts) and exit")] = False,
+) -> None:
+    """Serve a recording's sensor streams again on the socket ports of its scene, at the recorded pace."""
+    import signal
+    import sys
+
+    from morsec.app.replay import Replay, ReplayOptions, describe_recording
+    if info:
+        try:
+            typer.echo(describe_recording(recording))
+        except MorsecError as err:
+            fail(err)
+        return
+    if not rate > 0:
+        fail(MorsecError(f"--rate must be a positive number, got {rate}"))
+    for name, value in (("--service-port", service_port), ("--port-base", port_base)):
+        if value is not None and not 0 <= value <= MAX_PORT:
+            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
+    try:
+        player = Replay(recording, ReplayOptions(rate=rate, bind=bind, service_port=service_port,
+                                                 port_base=port_base, wait_for_client=wait_for_client))
+    except MorsecError as err:
+        fail(err)
+
+    def stop(*_) -> None:
+        player.quitting = True
+
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, stop)
+    player.announce(sys.stdout)
+    replayed, sent = player.run()
+    typer.echo(f"replayed {replayed} messages ({sent} sent to clients)")
     typer.echo("EXITING SIMULATION")
 
 

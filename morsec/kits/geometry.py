@@ -10,15 +10,16 @@ import numpy as np
 
 def euler_to_quat(rx: float, ry: float, rz: float) -> np.ndarray:
     """Quaternion (w, x, y, z) of R = Rz(rz) @ Ry(ry) @ Rx(rx)."""
+    return np.array(euler_to_quat_tuple(rx, ry, rz))
+
+
+def euler_to_quat_tuple(rx: float, ry: float, rz: float) -> tuple[float, float, float, float]:
+    """euler_to_quat as a tuple of floats, for a caller that packs it (no array to make)."""
     cx, sx = math.cos(rx / 2), math.sin(rx / 2)
     cy, sy = math.cos(ry / 2), math.sin(ry / 2)
     cz, sz = math.cos(rz / 2), math.sin(rz / 2)
-    return np.array([
-        cz * cy * cx + sz * sy * sx,
-        cz * cy * sx - sz * sy * cx,
-        cz * sy * cx + sz * cy * sx,
-        sz * cy * cx - cz * sy * sx,
-    ])
+    return (cz * cy * cx + sz * sy * sx, cz * cy * sx - sz * sy * cx, cz * sy * cx + sz * cy * sx,
+            sz * cy * cx - cz * sy * sx)
 
 
 def matrix_to_euler(r: np.ndarray) -> tuple[float, float, float]:

@@ -18,17 +18,18 @@ from morsec.middleware.socket_streams import _plain
 log = logging.getLogger("morsec.middleware.text")
 
 
-def check_output_file(name: str) -> str:
-    """A text stream's file: a relative path that stays inside the run's output folder (`morsec run
-    --output-dir`, the current folder by default), whatever the scene says; else ValueError."""
+def check_output_file(name: str, what: str = "a text stream's file") -> str:
+    """A file a scene names for a run to write (a text stream's, a recording's): a relative path that stays
+    inside the run's output folder (`morsec run --output-dir`, the current folder by default), whatever the
+    scene says; else ValueError."""
     path = PurePosixPath(name)
     if not name or name.endswith("/") or path.name in ("", ".", ".."):
-        raise ValueError("a text stream's file must name a file inside the run's output folder")
+        raise ValueError(f"{what} must name a file inside the run's output folder")
     if path.is_absolute() or ".." in path.parts:
-        raise ValueError("a text stream's file must be a relative path inside the run's output folder "
+        raise ValueError(f"{what} must be a relative path inside the run's output folder "
                          "(not absolute, no '..'); choose the folder with morsec run --output-dir")
     if any(not c.isprintable() for c in name):
-        raise ValueError("a text stream's file cannot contain control characters")
+        raise ValueError(f"{what} cannot contain control characters")
     return name
 
 

@@ -223,6 +223,17 @@ def concurrent(fn):
     return fn
 
 
+def services_of(obj: Any) -> dict[str, ServiceInfo]:
+    """The services an object's class (and its bases) declare, by name: what `expose` takes."""
+    found = {}
+    for klass in reversed(type(obj).__mro__):
+        for value in vars(klass).values():
+            info = getattr(value, "_morsec_service", None)
+            if info is not None:
+                found[info.name] = info
+    return found
+
+
 def _attribute(obj: Any, info: ServiceInfo) -> str:
     for klass in type(obj).__mro__:
         for attr, value in vars(klass).items():

@@ -24,12 +24,13 @@ from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
 from morsec.runtime.clock import Clock, Periodic, SleepHold
 from morsec.runtime.keys import KeyState
-from morsec.runtime.requests import RequestManager
+from morsec.runtime.requests import RequestManager, services_of
 from morsec.runtime.robot import RobotHandle, free_joint, place
 from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
 if TYPE_CHECKING:
+    from morsec.middleware.record.recorder import Recorder
     from morsec.runtime.foxglove.server import FoxgloveServer  # imported only when a run asks for it
     from morsec.runtime.view import Status, View
 
@@ -62,6 +63,8 @@ class RunOptions:
     view_port: int = 8080
     wait_for_client: bool = False  # no frame before a client's first request or stream connection (sweeps)
     foxglove: int | None = None  # serve the simulation on Foxglove's WebSocket protocol on this port (0: the OS's)
+    record: Path | None = None  # an MCAP file recording every stream (morsec.middleware.record)
+    record_services: bool = False  # ... and the service requests and answers
 
 
 @dataclass
@@ -91,6 +94,7 @@ class ComponentRuntime:
     out_streams: list = field(default_factory=list)
     echoes: list = field(default_factory=list)  # streams shown the commands its in_streams bring (--foxglove)
     modifiers: list = field(default_factory=list)
+    recording: Any = None  # an actuator's tap in the recording, if one is made: the commands it takes
     active: bool = True
     stopped: bool = False
     errors: set = field(default_factory=set)
@@ -223,7 +227,7 @@ class Simulation:
             self.requests.on_request.append(self._client_request)
         for name, obj in (("simulation", Supervision(self)), ("time", self.time_services),
                           ("communication", Communication(self))):
-            self.requests.expose(name, obj, _services_of(obj))
+            self.requests.expose(name, obj, services_of(obj))
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
         self.foxglove: FoxgloveServer | None = None
@@ -233,6 +237,14 @@ class Simulation:
             except BaseException:
                 self.close()
                 raise
+        self.recorder: Recorder | None = None
+        record = self.options.record
+        record_services = self.options.record_services
+        if record is None and env.get("record"):  # the scene's env.record: in the run's output folder
+            record = Path(self.options.output_dir) / env["record"]["file"]
+            record_services = record_services or bool(env["record"]["services"])
+        if record is not None:
+            self._open_recording(manifest, Path(record), record_services)
         self.view: View | None = None
         self._show(env)
 
@@ -348,7 +360,7 @@ class Simulation:
             raise RuntimeFailure(str(err)) from None
         for mw in self.middlewares.values():
             for pseudo, obj in mw.services().items():
-                self.requests.expose_more(pseudo, obj, _services_of(obj))
+                self.requests.expose_more(pseudo, obj, services_of(obj))
         locks = [mw.lockstep() for mw in self.middlewares.values()]
         self.sync = next((lock for lock in locks if lock is not None), None)
 
@@ -370,6 +382,52 @@ class Simulation:
                 continue  # nothing reaches it from outside
             streams = server.streams_for(entry.fqn, type(comp.instance), entry.level, comp.instance.properties)
             (comp.out_streams if comp.kind == "sensor" else comp.echoes).extend(streams)
+
+    def _open_recording(self, manifest: Manifest, path: Path, services: bool) -> None:
+        """Every component with a stream recorded (its messages, or the commands it takes), in simulated time."""
+        import json
+
+        from morsec import __version__
+        from morsec.component.catalogue import type_lineage
+        from morsec.middleware.base import StreamRequest
+        from morsec.middleware.record.channels import plan_stream
+        from morsec.middleware.record.recorder import Recorder
+        plans, taps = [], []
+        for entry in manifest.components:
+            streams = self.streams_of.get(entry.fqn)
+            if not streams:
+                continue
+            cls = load_class(entry.component, entry.component.name)  # a Device: its message schema
+            ref = entry.component
+            schema = f"morsec/{ref.kind}/{ref.id}" + (f"/{entry.level}" if entry.level else "")
+            for direction in dict.fromkeys(s.direction for s in streams):
+                request = StreamRequest(entry.fqn, direction, {}, type_lineage(cls), dict(entry.properties))
+                ros = [s.endpoint for s in streams if s.middleware == "ros" and s.direction == direction]
+                plans.append(plan_stream(request, schema, cls.message_schema(entry.level), ros))
+                taps.append((self.by_name[entry.fqn], direction))
+                for note in plans[-1].notes:
+                    log.warning("%s: %s", entry.fqn, note)
+        details = self.requests.exposed["simulation"].obj.details()
+        metadata = {"morsec": {
+            "version": __version__, "frequency": repr(manifest.loop.frequency),
+            "time": "simulated",  # log times: the simulated time of each message, in ns
+            "time_origin": "start" if self.clock.origin == 0.0 else "unix_epoch",  # environment.time.relative
+            "details": json.dumps(details),
+            "streams": json.dumps([s.model_dump(mode="json") for s in manifest.streams])}}
+        try:
+            recorder = self.recorder = Recorder(path, self.clock.now, plans, metadata, services=services)
+        except MorsecError:
+            self.close()
+            raise
+        for index, (comp, direction) in enumerate(taps):
+            tap = recorder.stream(index)
+            if direction == "OUT":
+                comp.out_streams.append(tap)
+            else:
+                comp.recording = tap
+        if services:
+            recorder.watch(self.requests.on_request)
+            self.requests.on_leave.append(recorder.forget)
 
     def _scene_objects(self) -> list[SceneObject]:
         out = []
@@ -568,6 +626,8 @@ class Simulation:
                     lines.append(f"  {what:<14} {where}" + (f"  ({pseudo})" if what == "services" else ""))
         if self.foxglove is not None:
             lines.append(f"  {'foxglove':<14} {self.foxglove.url}  (open in Foxglove: {self.foxglove.app_url})")
+        if self.recorder is not None:
+            lines.append(f"  {'recording':<14} {self.recorder.path}")
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
@@ -738,6 +798,8 @@ class Simulation:
             received = stream.take(self.clock.frames)
             if received is not None:
                 message = received
+        if message is not None and comp.recording is not None:
+            comp.recording.publish(message)
         try:
             if message is not None:
                 self.receive(comp, message)
@@ -798,6 +860,10 @@ class Simulation:
             foxglove.close()
             self.foxglove = None
         self.poller.close()
+        recorder = getattr(self, "recorder", None)
+        if recorder is not None:  # last: it waits for its writer to finish the file
+            self.recorder = None
+            recorder.close()
 
 
 class Stability:
@@ -864,16 +930,6 @@ class Stability:
 def _sane(values: np.ndarray) -> np.ndarray:
     """Which values MuJoCo accepts in its state (finite, within mjMAXVAL)."""
     return np.abs(values) <= mujoco.mjMAXVAL
-
-
-def _services_of(obj) -> dict:
-    found = {}
-    for klass in reversed(type(obj).__mro__):
-        for value in vars(klass).values():
-            info = getattr(value, "_morsec_service", None)
-            if info is not None:
-                found[info.name] = info
-    return found
 
 
 def _shown(value: Any) -> str | None:

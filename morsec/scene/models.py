@@ -278,6 +278,22 @@ class StreamManagerSpec(Strict):
     sync_port: Annotated[int, Field(ge=1, le=65535)] = Field(6000, description="lockstep port")
 
 
+def _check_recording(name: str) -> str:
+    from morsec.middleware.text import check_output_file
+    check_output_file(name, "a recording")
+    if not name.endswith(".mcap"):
+        raise ValueError("a recording is an MCAP file: its name ends with .mcap")
+    return name
+
+
+class RecordSpec(Strict):
+    """env.record(file, services=False): every run of the scene recorded (docs/recording.md)."""
+
+    file: Annotated[str, AfterValidator(_check_recording)] = Field(
+        description="the MCAP file, relative to the run's output folder (morsec run --output-dir)")
+    services: bool = Field(False, description="also record the service requests and their answers")
+
+
 class ViewportSpec(Strict):
     shade: Literal[tuple(SHADES)] = Field(  # type: ignore[valid-type]
         DEFAULT_SHADE, description="viewport_shade: how the viewers and `morsec render` draw the scene "
@@ -304,6 +320,8 @@ class EnvironmentBase(Strict):
         default_factory=dict, description="configure_stream_manager")
     multinode: MultinodeSpec | None = Field(None, description="configure_multinode")
     seed: Annotated[int, Field(ge=0)] | None = Field(None, description="random seed for noise modifiers")
+    record: RecordSpec | None = Field(
+        None, description="env.record: record every run's streams in MCAP (morsec run --record overrides the file)")
     show_framerate: bool = Field(False, description="show_framerate: the viewers show the frame rate")
     show_physics: bool = Field(False, description="show_physics: collision shapes and contacts in the viewers "
                                "and `morsec render`")

@@ -215,6 +215,11 @@ class Environment(AbstractComponent):
         """Seed of the noise modifiers (a morsec extension)."""
         self._put("seed", value=_plain(seed))
 
+    def record(self, file, services=False):
+        """Record every run's streams (and, with services=True, the service requests and answers) in this MCAP
+        file, relative to the run's output folder (a morsec extension; `morsec run --record` overrides it)."""
+        self._put("record", value={"file": str(file), "services": bool(services)})
+
     # ---- middleware, services, multinode
 
     def configure_multinode(self, protocol="socket", server_address="localhost", server_port="65000",

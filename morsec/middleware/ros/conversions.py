@@ -340,7 +340,10 @@ class RosIn:
         with self._lock:
             self._latest = data
 
-    def take(self) -> dict | None:
+    def take(self, frames: int) -> dict | None:
+        """The last message rospy delivered, at the actuator's next tick whatever the frame (`frames` is the
+        socket's frame order, docs/running.md#time): MORSE's ROS subscribers stored what came on their own
+        thread and the actuator read it at its next action."""
         with self._lock:
             data, self._latest = self._latest, None
         return data
