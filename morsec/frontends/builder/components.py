@@ -550,6 +550,10 @@ class AbstractComponent:
             kind, _, cid = ref.partition("/")
             if kind in kinds and cat.resolve(kind, cid):
                 return cat.resolve(kind, cid)
+        if "." in text and not text.startswith("morse."):  # a class of the simulation's own (src/<sim>/...)
+            found = cat.classpath(kinds, text)
+            if found:
+                return found
         parts = text.split(".")
         class_name = parts[-1]
         module = parts[-2] if len(parts) > 1 else None
@@ -566,8 +570,8 @@ class AbstractComponent:
         raise self._session.error(
             f"{type(self).__name__}: _classpath {text!r} names no component of the catalogue"
             f"{did_you_mean(class_name, names)} "
-            "(morsec does not load MORSE's Python component classes: write the component as a folder "
-            "components/<sensors|actuators>/<id>/component.py, see docs/builder.md)")
+            "(a class of your own is found by its path from the MORSE simulation's src/ folder, "
+            "e.g. 'mysim.sensors.thermo.Thermo', or written as a component folder: see docs/coming-from-morse.md)")
 
     # ---- emission
 
