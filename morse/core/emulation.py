@@ -221,14 +221,22 @@ class GameObject:
         `objto`), having property `prop` if given (`xray`: through those that do not): (object, point,
         normal), or Nones; `poly` adds Blender's polygon (and uv), which MuJoCo has not: None."""
         start = self._point(objfrom) if objfrom is not None else self._position()
-        hit = self._world.ray(start, self._point(objto), float(dist), str(prop), bool(xray), self._body)
+        hit = self._world.ray(start, self._point(objto), float(dist), str(prop), bool(xray), self._carrier())
         result = hit if hit is not None else (None, None, None)
         return result + (None,) * (1 if poly == 1 else 2 if poly else 0)
 
     def rayCastTo(self, other, dist=0.0, prop=""):
         """The first object hit from this object towards `other` within `dist` having `prop`, or None."""
-        hit = self._world.ray(self._position(), self._point(other), float(dist), str(prop), False, self._body)
+        hit = self._world.ray(self._position(), self._point(other), float(dist), str(prop), False, self._carrier())
         return hit[0] if hit is not None else None
+
+    def _carrier(self) -> GameObject:
+        """What a ray from this object passes through: the object, and the robot carrying it (a component
+        inside its robot's shape: Bullet's rays did not meet a shape from inside)."""
+        top = self
+        while top.parent is not None:
+            top = top.parent
+        return top
 
     def __getattr__(self, name: str):
         if name.startswith("_"):
@@ -455,9 +463,10 @@ class World:
         m.body_quat[obj._body] = matrix_to_quat(parent_rot.T @ np.asarray(rot, float))
         mujoco.mj_kinematics(m, d)
 
-    def ray(self, start, target, dist: float, prop: str, xray: bool, exclude: int):
+    def ray(self, start, target, dist: float, prop: str, xray: bool, ignored: GameObject):
         """(object, point, normal) of the first hit from `start` towards `target` within `dist` (0: up to the
-        target), of an object with property `prop` if given; None if nothing."""
+        target), of an object with property `prop` if given, passing through `ignored` and the components it
+        carries; None if nothing."""
         sim = self.sim
         direction = np.asarray(target, float) - np.asarray(start, float)
         length = float(np.linalg.norm(direction))
@@ -467,19 +476,28 @@ class World:
         reach = dist if dist > 0 else length
         origin, travelled = np.asarray(start, float).copy(), 0.0
         geom, normal = np.zeros(1, dtype=np.int32), np.zeros(3)
+        exclude = ignored._body
         for _ in range(MAX_RAY_HOPS):
             found = mujoco.mj_ray(sim.model, sim.data, origin, direction, RAY_GROUPS, 1, exclude, geom, normal)
             if found < 0 or travelled + found > reach:
                 return None
             point = origin + found * direction
-            hit = self._owner[sim.model.geom_bodyid[geom[0]]] if geom[0] >= 0 else None
-            if not prop or (hit is not None and prop in hit):
+            body = sim.model.geom_bodyid[geom[0]]
+            hit = self._owner[body]
+            passing = hit is not None and self.top(hit) is ignored
+            if not passing and (not prop or (hit is not None and prop in hit)):
                 return hit, mathutils.Vector(point), mathutils.Vector(normal)
-            if not xray:
+            if not passing and not xray:
                 return None
-            exclude = sim.model.geom_bodyid[geom[0]]
+            exclude = body  # on through it
             origin, travelled = point, travelled + found
         return None
+
+    @staticmethod
+    def top(obj: GameObject) -> GameObject:
+        while obj.parent is not None:
+            obj = obj.parent
+        return obj
 
 
 _WORLDS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()

@@ -27,14 +27,27 @@ def ours(value):
     """A value of the package's types as one of this module's (tuples converted item by item)."""
     kind = _OURS.get(type(value))
     if kind is not None:
-        return kind(value) if kind is not Euler else Euler(value, value.order)
+        return kind(value) if kind is not Euler else _euler(value, value.order)
     if isinstance(value, tuple):
         return tuple(ours(v) for v in value)
     return value
 
 
+def _euler(angles, order: str = "XYZ"):
+    """An Euler of ours. The package (3.3.0, built for Python 3.11) refuses every order given as a string,
+    even Blender's default 'XYZ': Eulers are XYZ, as MORSE's components use them."""
+    if order != "XYZ":
+        from morse.core.emulation import not_emulated
+        not_emulated(f"Euler order {order!r}", "the mathutils package refuses orders: Eulers are 'XYZ'")
+    return Euler(tuple(angles))
+
+
 def _returning_ours(name: str, method):
     def call(self, *args, **kwargs):
+        if name == "to_euler" and args and isinstance(args[0], str):  # the order (see _euler)
+            if args[0] != "XYZ":
+                _euler((0, 0, 0), args[0])
+            args = args[1:]
         return ours(method(self, *args, **kwargs))
     call.__name__ = call.__qualname__ = name
     call.__doc__ = method.__doc__
@@ -97,6 +110,11 @@ class Quaternion(_blender.Quaternion):
 @_adopt
 class Euler(_blender.Euler):
     __slots__ = ()
+
+    def __new__(cls, angles=(0.0, 0.0, 0.0), order="XYZ"):
+        if order != "XYZ":
+            _euler(angles, order)
+        return super().__new__(cls, tuple(angles))
 
 
 _OURS = {_blender.Vector: Vector, _blender.Matrix: Matrix, _blender.Quaternion: Quaternion, _blender.Euler: Euler}

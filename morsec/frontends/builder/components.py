@@ -19,6 +19,7 @@ from morsec.frontends.builder import session as _session
 from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
 from morsec.modifiers.registry import MODIFIERS
 from morsec.scene import models
+from morsec.scene.naming import type_name
 
 _PHYSICS_TYPES = {"STATIC": "static", "DYNAMIC": "dynamic", "RIGID_BODY": "rigid_body", "NO_COLLISION": "no_collision"}
 _INTERNAL_PROPERTIES = ("Component_Tag", "Robot_Tag", "External_Robot_Tag", "Zone_Tag")
@@ -175,7 +176,8 @@ class AbstractComponent:
             session.scan(frame)
 
     def _default_label(self) -> str:
-        return self._emit_type() or type(self).__name__.lower()
+        emitted = self._emit_type()
+        return type_name(emitted) if emitted else type(self).__name__.lower()
 
     def _morse_default_name(self) -> str:
         """The name MORSE gives an object no variable names: its .blend object's (the builder class name)."""
