@@ -12,6 +12,7 @@ import shutil
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import pytest
@@ -20,6 +21,7 @@ from morsec.app.project import build_scene
 from morsec.runtime.simulation import RunOptions, Simulation
 from morsec.testing import Harness
 from tests.runtime_helpers import Morsec
+from tests.test_ros import ros_master, simulate  # noqa: F401 (fixtures: a roscore, a morsec run on it)
 
 FIXTURE = Path(__file__).parent / "fixtures" / "labsim"
 MORSEC = Path(sys.executable).with_name("morsec")
@@ -306,3 +308,40 @@ def test_morsec_components_lists_the_labs_components_beside_the_catalogue(labsim
     assert any(line.split()[:2] == ["thermometer", "Thermometer"] for line in lines)  # the catalogue's, still
     page = run_morsec("components", "labsim.sensors.odometry.LabOdometry", cwd=labsim).stdout
     assert "`raw`" in page and "`integrated`" in page and "`dyaw`" in page
+
+
+ROS_SCENE = """\
+from morse.builder import *
+from labsim.builder.actuators import LabMotion
+from labsim.builder.sensors import LabPose
+robot = ATRV()
+robot.translate(x=1.5)
+lab_pose = LabPose()
+lab_pose.add_stream('ros', 'morse.middleware.ros.pose.PoseStampedPublisher')
+robot.append(lab_pose)
+pose = Pose()
+pose.add_stream('ros')
+robot.append(pose)
+motion = LabMotion()
+motion.add_stream('ros', 'morse.middleware.ros.motion_vw.TwistReader')
+robot.append(motion)
+env = Environment('empty')
+"""
+
+
+def test_the_labs_components_stream_on_ros(labsim, simulate):
+    """On ROS 1 (Debian's roscore and rostopic as the peers), with the serialisers a MORSE script names: the
+    lab's pose publishes what Pose publishes, a Twist drives the lab's actuator."""
+    script = labsim / "ros_scene.py"
+    script.write_text(ROS_SCENE, encoding="utf-8")
+    simulate(script, "fixed_step")
+    from tests.test_ros import echo, publish_once
+    lab, builtin = echo("/robot/lab_pose")[0], echo("/robot/pose")[0]
+    assert lab["header"]["frame_id"] == builtin["header"]["frame_id"] == "/map"
+    assert lab["pose"]["position"]["x"] == pytest.approx(1.5, abs=0.01)
+    for key in ("x", "y", "z"):  # the robot at rest: both read the same place, at whatever tick
+        assert lab["pose"]["position"][key] == pytest.approx(builtin["pose"]["position"][key], abs=1e-4)
+    publish_once("/robot/motion", "geometry_msgs/Twist", "{linear: {x: 1.0}, angular: {z: 0.0}}")
+    deadline = time.monotonic() + 20
+    while (x := echo("/robot/lab_pose")[0]["pose"]["position"]["x"]) < 2.5:
+        assert time.monotonic() < deadline, f"the lab's actuator did not drive the robot (x = {x})"
