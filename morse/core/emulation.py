@@ -149,6 +149,9 @@ class GameObject:
     def worldOrientation(self, value) -> None:
         self._world.put(self, self._position(), _rotation(value))
 
+    position = worldPosition  # Blender 2.5's names, which MORSE's older components use
+    orientation = worldOrientation
+
     def _parent_frame(self) -> tuple[np.ndarray, np.ndarray]:
         parent = self.parent
         if parent is None:

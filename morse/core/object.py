@@ -87,8 +87,13 @@ def _properties_model(cls) -> tuple[type[ComponentProperties], dict[str, tuple[s
     python_names = {}
     for name, (default, declared, doc, python_name) in _merged(cls, "_properties").items():
         python_names[name] = (python_name, default)
-        kind = type(default) if isinstance(default, (bool, int, float, str)) else \
-            _PROPERTY_TYPES.get(str(declared).strip().lower()) if default is None else None
+        declared_kind = _PROPERTY_TYPES.get(str(declared).strip().lower())
+        kind = None
+        if default is None:
+            kind = declared_kind
+        elif isinstance(default, (bool, int, float, str)):
+            # the declared type when the default is one (Range: sys.maxsize, 'float'), else the default's
+            kind = declared_kind if declared_kind is float and type(default) is int else type(default)
         if kind is None or name.startswith("_") or not name.isidentifier():
             continue  # a list, a dict ...: MORSE's game properties could not hold it either; the default stays
         fields[name] = (Optional[kind] if default is None else kind,  # noqa: UP045 (pydantic's annotation)
