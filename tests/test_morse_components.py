@@ -167,9 +167,13 @@ def test_a_morse_simulation_folder_runs_with_its_services_on_the_socket(labsim, 
 
 TEXT_AND_SOCKET = """\
 from morse.builder import *
-from labsim.builder.sensors import LabPose, LabThermometer
+from labsim.builder.sensors import Heading, LabPose, LabThermometer
 robot = ATRV()
 robot.translate(2.0, 0.0, 0.0)
+robot.rotate(z=0.5)
+heading = Heading()
+heading.add_stream("socket")
+robot.append(heading)
 lab_pose = LabPose()
 robot.append(lab_pose)
 lab_pose.add_stream("text")
@@ -190,6 +194,8 @@ def test_the_labs_sensors_stream_on_text_and_socket(labsim, tmp_path):
         import json
         message = json.loads(sim.stream("robot.lab_pose").line())
         assert message["x"] == pytest.approx(2.0, abs=1e-6)
+        heading = json.loads(sim.stream("robot.heading").line())["heading"]  # a Blender Vector, as a list
+        assert heading == pytest.approx([math.cos(0.5), math.sin(0.5), 0.0], abs=1e-4)
         assert sim.client().ok("robot.thermo", "get_local_data")["temperature"] == 21.5
         files = dict(sim.text_files)
     written = (tmp_path / files["robot.thermo"]).read_text(encoding="utf-8")
@@ -302,7 +308,7 @@ def test_morsec_components_lists_the_labs_components_beside_the_catalogue(labsim
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
     mine = [line.split()[0] for line in lines if line.endswith("[MORSE API]")]
-    assert mine == ["labsim.sensors.odometry.LabOdometry", "labsim.sensors.pose.LabPose",
+    assert mine == ["labsim.sensors.heading.Heading", "labsim.sensors.odometry.LabOdometry", "labsim.sensors.pose.LabPose",
                     "labsim.sensors.thermometer.LabThermometer", "labsim.actuators.igniter.Igniter",
                     "labsim.actuators.motion.LabMotion"]
     assert any(line.split()[:2] == ["thermometer", "Thermometer"] for line in lines)  # the catalogue's, still
