@@ -351,3 +351,58 @@ def test_the_labs_components_stream_on_ros(labsim, simulate):
     deadline = time.monotonic() + 20
     while (x := echo("/robot/lab_pose")[0]["pose"]["position"]["x"]) < 2.5:
         assert time.monotonic() < deadline, f"the lab's actuator did not drive the robot (x = {x})"
+
+
+KEYS_AND_BUG = """\
+import morse.core.sensor
+from morse.core import blenderapi
+from morse.helpers.components import add_data
+
+
+class Keys(morse.core.sensor.Sensor):
+    add_data('pressed', False, 'bool', 'a key')
+
+    def __init__(self, obj, parent=None):
+        super().__init__(obj, parent)
+        self.keyboard = blenderapi.keyboard()
+
+
+class Buggy(morse.core.sensor.Sensor):
+    add_data('ratio', 0.0, 'float', 'a ratio')
+
+    def default_action(self):
+        self.local_data['ratio'] = 1.0 / 0.0
+"""
+
+
+@pytest.mark.parametrize("component, code", [("Keys", 1), ("Buggy", 0)])
+def test_a_component_built_on_what_is_not_emulated_stops_at_start_and_a_bug_of_its_own_is_its_line(labsim, component,
+                                                                                                    code):
+    module = labsim / "src" / "labsim" / "sensors" / "odd.py"
+    module.write_text(KEYS_AND_BUG, encoding="utf-8")
+    (labsim / "odd.py").write_text(textwrap.dedent(f"""\
+        from morse.builder import *
+        from morse.builder.creator import SensorCreator
+
+        class Odd(SensorCreator):
+            _classpath = "labsim.sensors.odd.{component}"
+
+        robot = ATRV()
+        odd = Odd()
+        robot.append(odd)
+        env = Environment("empty")
+    """), encoding="utf-8")
+    result = run_morsec("run", "odd.py", "--duration", "0.5", "--time-strategy", "fixed_step", "--port-base", "0",
+                        "--service-port", "0", cwd=labsim)
+    assert result.returncode == code, result.stderr
+    assert "Traceback" not in result.stderr
+    if component == "Keys":  # in the component's __init__, as the simulation starts: nothing runs
+        assert result.stderr.strip().splitlines() == [
+            f"error: {module}:11: blenderapi.keyboard() is not emulated by morsec: no keyboard reaches a component "
+            "(morsec's Keyboard actuator reads the viewer's keys) (docs/coming-from-morse.md lists what is)"]
+        assert "SCENE INITIALIZED" not in result.stdout
+    else:  # logged once, at its line, and the simulation goes on
+        logged = [line for line in result.stderr.splitlines() if "ZeroDivisionError" in line]
+        assert logged == [f"ERROR morsec.runtime: robot.odd: ComponentError: {module}:18: ZeroDivisionError: "
+                          "float division by zero"]
+        assert "EXITING SIMULATION" in result.stdout
