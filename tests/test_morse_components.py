@@ -20,8 +20,11 @@ import pytest
 from morsec.app.project import build_scene
 from morsec.runtime.simulation import RunOptions, Simulation
 from morsec.testing import Harness
+from tests import test_ros
 from tests.runtime_helpers import Morsec
-from tests.test_ros import ros_master, simulate  # noqa: F401 (fixtures: a roscore, a morsec run on it)
+
+# test_ros's fixtures: `ros_master` (a roscore), `ros_simulate` (a morsec run on it)
+ros_master, ros_simulate = test_ros.ros_master, test_ros.simulate
 
 FIXTURE = Path(__file__).parent / "fixtures" / "labsim"
 MORSEC = Path(sys.executable).with_name("morsec")
@@ -335,13 +338,13 @@ env = Environment('empty')
 """
 
 
-def test_the_labs_components_stream_on_ros(labsim, simulate):
+def test_the_labs_components_stream_on_ros(labsim, ros_simulate):
     """On ROS 1 (Debian's roscore and rostopic as the peers), with the serialisers a MORSE script names: the
     lab's pose publishes what Pose publishes, a Twist drives the lab's actuator."""
     script = labsim / "ros_scene.py"
     script.write_text(ROS_SCENE, encoding="utf-8")
-    simulate(script, "fixed_step")
-    from tests.test_ros import echo, publish_once
+    ros_simulate(script, "fixed_step")
+    echo, publish_once = test_ros.echo, test_ros.publish_once
     lab, builtin = echo("/robot/lab_pose")[0], echo("/robot/pose")[0]
     assert lab["header"]["frame_id"] == builtin["header"]["frame_id"] == "/map"
     assert lab["pose"]["position"]["x"] == pytest.approx(1.5, abs=0.01)
