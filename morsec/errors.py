@@ -38,6 +38,11 @@ class RuntimeFailure(MorsecError):
     exit_code = 1
 
 
+class Unsupported(RuntimeFailure):
+    """A component asked for something morsec does not do (a MORSE API the `morse` package has no equivalent of):
+    the build or the run stops with this line, which names the component's file and line."""
+
+
 def location(file: str | None, line: int | None, column: int | None) -> str:
     if not file:
         return ""

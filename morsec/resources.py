@@ -95,6 +95,36 @@ def search_path(start: Path | None = None) -> tuple[Path, ...]:
     return tuple(unique)
 
 
+MORSE_SIM_SCRIPT = "default.py"  # what `morse create NAME` writes: NAME/default.py, NAME/src/NAME/..., NAME/scripts/
+MORSE_SIM_SOURCES = "src"
+
+
+def morse_simulation(start: Path) -> Path | None:
+    """The folder of a MORSE simulation (laid out by `morse create`: `default.py` beside a `src/` folder) at or
+    above `start` (a folder or a file in it), or None."""
+    start = Path(start).resolve()
+    for folder in ((start,) if start.is_dir() else ()) + tuple(start.parents):
+        if (folder / MORSE_SIM_SCRIPT).is_file() and (folder / MORSE_SIM_SOURCES).is_dir():
+            return folder
+    return None
+
+
+def classpath_roots(start: Path | None = None) -> tuple[Path, ...]:
+    """The folders whose Python packages hold MORSE-API components (classes named by a dotted class path): the
+    `src/` of the MORSE simulation `start` is in. Put on sys.path to import them."""
+    sim = morse_simulation(start if start is not None else Path.cwd())
+    return (sim / MORSE_SIM_SOURCES,) if sim is not None else ()
+
+
+def scene_source(path: Path) -> Path:
+    """What a scene path names: a MORSE simulation's folder (`morsec run mysim`, as `morse run mysim`) is its
+    `default.py`; anything else is itself."""
+    path = Path(path)
+    if path.is_dir() and (path / MORSE_SIM_SCRIPT).is_file() and (path / MORSE_SIM_SOURCES).is_dir():
+        return path / MORSE_SIM_SCRIPT
+    return path
+
+
 def morse_data() -> Path | None:
     """$MORSE_ROOT/share/morse/data when $MORSE_ROOT names a MORSE installation (its environments and props
     are then MORSE's own .blend files: morsec.component.morse_data), else None."""

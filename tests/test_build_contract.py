@@ -46,7 +46,8 @@ def test_a_build_runs_from_any_directory_with_the_project_components_it_was_buil
     build = build_folder(source, root / "build" / "scene")
     manifest = json.loads((build / "manifest.json").read_text())
     ref = next(c["component"] for c in manifest["components"] if c["fqn"] == "robot.probe")
-    assert ref == {"root": str((root / "components").resolve()), "kind": "sensors", "id": "probe", "name": "Probe"}
+    assert ref == {"root": str((root / "components").resolve()), "kind": "sensors", "id": "probe", "name": "Probe",
+                   "module": None}
     with Morsec(build, tmp_path, cwd=elsewhere) as sim:  # no morsec.toml above `elsewhere`
         with sim.client() as client:
             assert client.ok("robot.probe", "get_properties") == {"Reading": 7.5}

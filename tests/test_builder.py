@@ -491,8 +491,8 @@ ERRORS = {
         chair = PassiveObject('props/objects', 'Chair')
         """, "sim.py:2:9: PassiveObject('props/objects', 'Chair'): no catalogue prop by that name"),
     "morse_core": ("""
-        from morse.core.sensor import Sensor
-        """, "sim.py:1:1: ModuleNotFoundError: No module named 'morse.core'"),
+        from morse.core.wheeled_robot import MorsePhysicsRobot
+        """, "sim.py:1:1: ModuleNotFoundError: No module named 'morse.core.wheeled_robot'"),
     "multinode_unknown_robot": ("""
         from morse.builder import *
         robot = ATRV()

@@ -40,6 +40,8 @@ SWEEP_ONLY = ("dask", "distributed", "pandas", "pyarrow", "matplotlib", "morsec.
 FOXGLOVE_ONLY = ("foxglove", "morsec.runtime.foxglove")
 # what only a recording needs (`morsec run --record`): MCAP, ROS 2's messages, the recorder
 RECORD_ONLY = ("mcap", "rosbags", "morsec.middleware.record", "morsec.app.replay")
+# what only a scene with MORSE-API components needs: the emulation of MORSE's core, Blender's mathutils
+MORSE_API_ONLY = ("morse", "morse.core", "morse.core.emulation", "morse.helpers", "mathutils")
 
 AT_SCENE_INITIALIZED = """\
 import gc, json, sys
@@ -74,7 +76,9 @@ def scene(tmp_path) -> Path:
 
 def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
     build = build_scene(scene, tmp_path / "build")
-    result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY), "run", str(build), "--duration", "0.05",
+    result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY
+                                                       + MORSE_API_ONLY), "run", str(build),
+                        "--duration", "0.05",
                         "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
     line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))
     report = json.loads(line.removeprefix("MODULES "))

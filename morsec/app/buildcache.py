@@ -18,7 +18,7 @@ import os
 import sys
 from pathlib import Path
 
-from morsec.resources import data_dir, morse_data, search_path
+from morsec.resources import classpath_roots, data_dir, morse_data, search_path
 
 CACHE_DIR = "morsec/builds"  # under $XDG_CACHE_HOME or ~/.cache
 MANIFEST = "manifest.json"  # morsec.scene.manifest.MANIFEST, which this module does not import (pydantic, MuJoCo)
@@ -51,7 +51,7 @@ def inputs_key(source: Path) -> str | None:
             for path in sorted(morse.rglob("*.blend")):
                 stat = path.stat()
                 add(f"{path} {stat.st_size} {stat.st_mtime_ns}")
-        for root in (_PACKAGE, data_dir("templates"), *search_path(source.parent)):
+        for root in (_PACKAGE, data_dir("templates"), *search_path(source.parent), *classpath_roots(source.parent)):
             add(str(root))
             for path in _files(root):
                 add(path.relative_to(root).as_posix())

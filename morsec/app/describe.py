@@ -28,7 +28,7 @@ def catalogue_listing(cat: Catalogue) -> str:
         lines.append(f"{kind}:")
         width = max(len(cid) for cid in entries)
         for cid, cls in sorted(entries.items()):
-            source = "" if is_builtin(cls) else "  [project]"
+            source = "" if is_builtin(cls) else "  [MORSE API]" if getattr(cls, "classpath", None) else "  [project]"
             lines.append(f"  {cid:<{width}}  {cls.builder_name:<22} {cls.short_descr}{source}")
         lines.append("")
     return "\n".join(lines)

@@ -9,19 +9,24 @@ from typing import TYPE_CHECKING
 
 from morsec.app import buildcache
 from morsec.app.buildcache import MANIFEST
+from morsec.resources import MORSE_SIM_SCRIPT, scene_source
 
 if TYPE_CHECKING:
     from morsec.component.catalogue import Catalogue
 
 
 def default_build_dir(source: Path) -> Path:
-    return Path("build") / Path(source).stem
+    """build/<scene name>; a MORSE simulation's default.py (`morsec run mysim`) is built as build/mysim."""
+    source = scene_source(Path(source))
+    if source.name == MORSE_SIM_SCRIPT and scene_source(source.parent) == source:
+        return Path("build") / source.resolve().parent.name
+    return Path("build") / source.stem
 
 
 def build_scene(source: Path, out_dir: Path, catalogue: Catalogue | None = None) -> Path:
     """Compile a scene file into `out_dir` (replaced only once the new build is complete); nothing is done
     when `out_dir` is an up-to-date build of it."""
-    source = Path(source)
+    source = scene_source(Path(source))
     key = buildcache.inputs_key(source) if catalogue is None else None
     if buildcache.up_to_date(out_dir, key):
         return Path(out_dir)
@@ -39,7 +44,8 @@ def check_scene(source: Path, strict: bool = False) -> None:
     from morsec.compiler.build import compile_scene
     from morsec.component.catalogue import load_catalogue
     from morsec.frontends.load import load_scene
-    cat = load_catalogue(Path(source).parent)
+    source = scene_source(Path(source))
+    cat = load_catalogue(source.parent)
     compile_scene(load_scene(source, cat, strict), cat)
 
 
@@ -48,6 +54,8 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     source = Path(source)
     if source.is_dir() and (source / MANIFEST).is_file():
         return source
+    out_dir = Path(out) if out else default_build_dir(source)
+    source = scene_source(source)
     out_dir = Path(out) if out else default_build_dir(source)
     key = buildcache.inputs_key(source)
     if buildcache.up_to_date(out_dir, key):

@@ -130,7 +130,8 @@ def component_entries(scene, cat: Catalogue) -> list[tuple[ComponentEntry, list]
                                  params=dict(o.model_extra or {})) for o in comp.overlays]
         entries.append((ComponentEntry(
             fqn=fqn, robot=robot.name, parent=parent, type=comp.type, kind=cls.kind, component=component_ref(cls),
-            level_class=impl.__name__, level=comp.level, frequency=comp.frequency,
+            level_class=impl.__name__ if impl.__module__ == cls.__module__ else f"{impl.__module__}.{impl.__name__}",
+            level=comp.level, frequency=comp.frequency,
             properties=comp.properties.model_dump(mode="json"),
             data_fields=[f.name for f in impl.fields_at(comp.level)],
             services=comp.services, service_names=sorted(impl.services()), modifiers=modifiers, overlays=overlays,
@@ -158,6 +159,9 @@ def placements_on_robots(scene) -> dict[str, tuple[list[float], list[float]]]:
 
 
 def component_ref(cls) -> ComponentRef:
+    if getattr(cls, "classpath", None):
+        return ComponentRef(root=str(cls.import_root), kind=f"{cls.kind}s", id=cls.id, name=cls.__name__,
+                            module=cls.__module__)
     root = Path(cls.folder).parent.parent
     return ComponentRef(root=BUILTIN_ROOT if is_builtin(cls) else str(root.resolve()), kind=f"{cls.kind}s",
                         id=cls.id, name=cls.__name__)

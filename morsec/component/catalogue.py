@@ -12,8 +12,10 @@ from __future__ import annotations
 import hashlib
 import importlib.machinery
 import importlib.util
+import os
 import re
 import sys
+import traceback
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
@@ -39,6 +41,7 @@ from morsec.resources import (  # noqa: F401 (the search path's names, where the
     ENTRY_POINT_GROUP,
     ENV_VAR,
     PROJECT_FILE,
+    classpath_roots,
     data_dir,
     morse_data,
     project_component_dirs,
@@ -61,6 +64,7 @@ class Catalogue:
     aliases: dict[str, dict[str, str]] = field(default_factory=dict)  # kind -> builder name -> id
     variant_of: dict[str, tuple[str, str]] = field(default_factory=dict)  # prop object name -> (prop id, name)
     _devices: dict | None = field(default=None, repr=False)
+    sources: tuple[Path, ...] = ()  # folders of packages holding components named by class path (a MORSE src/)
     morse: MorseData | None = field(default=None, repr=False)  # $MORSE_ROOT's environments and props
 
     def ids(self, kind: str) -> list[str]:
@@ -113,6 +117,26 @@ class Catalogue:
             raise MorsecError(f"unknown {label} type {name!r}{did_you_mean(name, self.names(kind))}")
         return self.by_kind[kind][resolved]
 
+    def add_classpath_component(self, cls: type[Device]) -> str:
+        """Register a class named by its dotted path (a MORSE-API component): its id is the path."""
+        kind = f"{cls.kind}s"
+        if self.by_kind.setdefault(kind, {}).get(cls.id) is not cls:
+            self.by_kind[kind][cls.id] = cls
+            self._devices = None
+        return cls.id
+
+    def classpath(self, kinds: tuple[str, ...], text: str) -> str | None:
+        """The id of the component at class path `text` (module.Class) in this catalogue's sources, imported
+        now if it was not found when the catalogue was loaded; None if none of them has it."""
+        for kind in kinds:
+            if text in self.by_kind.get(kind, {}):
+                return text
+        for source in self.sources:
+            cls = load_classpath(source, text)
+            if cls is not None and f"{cls.kind}s" in kinds:
+                return self.add_classpath_component(cls)
+        return None
+
     def variant(self, name: str) -> dict | None:
         """The entry of `Prop.variants` that prop type `name` names (an object of a props file), or None."""
         found = self.variant_of.get(name)
@@ -149,12 +173,12 @@ class Catalogue:
 
 
 def load_catalogue(start: Path | None = None) -> Catalogue:
-    return _load(search_path(start), morse_data())
+    return _load(search_path(start), morse_data(), classpath_roots(start))
 
 
 @lru_cache(maxsize=16)
-def _load(roots: tuple[Path, ...], morse: Path | None = None) -> Catalogue:
-    cat = Catalogue(roots)
+def _load(roots: tuple[Path, ...], morse: Path | None = None, sources: tuple[Path, ...] = ()) -> Catalogue:
+    cat = Catalogue(roots, sources=sources)
     if morse is not None:  # its imports are found by name (Catalogue.resolve), their templates under its root
         cat.morse = MorseData(morse)
         cat.roots = (*roots, cat.morse.root)
@@ -180,7 +204,112 @@ def _load(roots: tuple[Path, ...], morse: Path | None = None) -> Catalogue:
                                           f"({taken[0] or taken[1] or name})")
                     cat.aliases[kind][name] = cid
                     cat.variant_of[name] = (cid, name)
+    for source in sources:
+        for module in classpath_modules(source):
+            for cls in classpath_components(source, module):
+                cat.add_classpath_component(cls)
     return cat
+
+
+# ---------------------------------------------------------------- components named by a dotted class path
+
+def classpath_modules(source: Path) -> list[str]:
+    """The modules of a MORSE simulation's `src/` that hold its components, as `morse create` and `morse add`
+    lay them out: src/<sim>/sensors/*.py and src/<sim>/actuators/*.py."""
+    found = []
+    for package in sorted(p for p in source.iterdir() if (p / "__init__.py").is_file()):
+        for kind in ("sensors", "actuators"):
+            for file in sorted((package / kind).glob("*.py")):
+                if file.stem != "__init__":
+                    found.append(f"{package.name}.{kind}.{file.stem}")
+    return found
+
+
+def import_from(source: Path, module: str):
+    """Import `module` from the folder `source` (put on sys.path, where it stays: its modules import one
+    another while the simulation runs). A package of the same name loaded from elsewhere (another simulation's)
+    is dropped first. An error is one line at the module's own line."""
+    folder = use_source(source)
+    try:
+        return importlib.import_module(module)
+    except MorsecError:
+        raise
+    except Exception as err:
+        raise MorsecError(_import_failure(err, folder, module)) from None
+
+
+def use_source(source: Path) -> str:
+    """Put `source` first on sys.path (if it is not there), and drop the packages of the same names as its own
+    that were loaded from elsewhere (another simulation's `mysim`): its own are imported instead."""
+    folder = str(Path(source).resolve())
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    for top in (p.name for p in Path(folder).iterdir() if (p / "__init__.py").is_file()):
+        loaded = sys.modules.get(top)
+        where = getattr(loaded, "__file__", None) or next(iter(getattr(loaded, "__path__", None) or []), None)
+        if loaded is not None and where and not str(Path(where).resolve()).startswith(folder + os.sep):
+            for name in [m for m in sys.modules if m == top or m.startswith(top + ".")]:
+                del sys.modules[name]
+    return folder
+
+
+def _import_failure(err: Exception, folder: str, module: str) -> str:
+    frames = [f for f in traceback.extract_tb(err.__traceback__) if f.filename.startswith(folder + os.sep)]
+    where = f"{frames[-1].filename}:{frames[-1].lineno}: " if frames else ""
+    text = str(err).strip().splitlines()
+    message = f"{where}{type(err).__name__}" + (f": {text[0]}" if text else "")
+    missing = getattr(err, "name", None) if isinstance(err, ModuleNotFoundError) else None
+    if missing and missing.split(".")[0] == "morse":
+        message += (" (morsec emulates morse.core.sensor, actuator, services, status, exceptions, blenderapi, "
+                    "mathutils, robot and morse.helpers.components, transformation, morse_math: see "
+                    "docs/coming-from-morse.md)")
+    elif missing and missing.split(".")[0] in ("bge", "bpy", "GameLogic"):
+        message += " (Blender's modules do not exist in morsec: morse.core.blenderapi stands for what it emulates)"
+    elif missing is None and not where:
+        message += f" (importing {module})"
+    return message
+
+
+def classpath_components(source: Path, module: str) -> list[type[Device]]:
+    """The sensor and actuator classes `module` defines (its levels' classes left out: they are their
+    component's)."""
+    loaded = import_from(source, module)
+    classes = [c for c in vars(loaded).values() if isinstance(c, type) and c.__module__ == loaded.__name__
+               and issubclass(c, (Sensor, Actuator)) and c not in (Sensor, Actuator)]
+    levels = {lv.cls for c in classes for lv in c.levels if lv.cls}
+    return [_as_classpath_component(c, source) for c in classes
+            if c.__name__ not in levels and f"{c.__module__}.{c.__name__}" not in levels]
+
+
+def _as_classpath_component(cls: type[Device], source: Path) -> type[Device]:
+    classpath = f"{cls.__module__}.{cls.__qualname__}"
+    if vars(cls).get("classpath") != classpath:
+        cls.classpath = classpath
+        cls.id = classpath
+        cls.folder = Path(sys.modules[cls.__module__].__file__ or source).parent
+        cls.import_root = Path(source).resolve()
+        if "builder_name" not in vars(cls) or not cls.builder_name:
+            cls.builder_name = cls.__name__
+        check_properties(cls.Properties, Path(cls.folder))
+    return cls
+
+
+def load_classpath(source: Path, classpath: str) -> type[Device] | None:
+    """The sensor or actuator class at `classpath` (module.Class) under `source`, or None if the module has no
+    such class (an import error is the module's line)."""
+    module, _, name = classpath.rpartition(".")
+    if not module:
+        return None
+    try:
+        loaded = import_from(source, module)
+    except MorsecError as err:
+        if f"No module named {module.split('.')[0]!r}" in str(err):
+            return None  # not a module of this simulation
+        raise
+    cls = getattr(loaded, name, None)
+    if not (isinstance(cls, type) and issubclass(cls, (Sensor, Actuator))):
+        return None
+    return _as_classpath_component(cls, source)
 
 
 def _module_name(folder: Path, kind: str, cid: str) -> str:
@@ -286,6 +415,15 @@ def load_class(ref: str | ComponentRefLike, name: str | None = None) -> type:
         if not (isinstance(target, type) and issubclass(target, Modifier)):
             raise MorsecError(f"cannot load {ref}: not a morsec.modifiers.base.Modifier subclass: rebuild the scene")
         return target
+    module_path = getattr(ref, "module", None)
+    if module_path:  # a class named by its dotted path (a MORSE-API component), importable from `root`
+        target = name or ref.name
+        if "." in target:
+            module_path, _, target = target.rpartition(".")
+        found = getattr(import_from(Path(ref.root), module_path), target, None)
+        if not (isinstance(found, type) and issubclass(found, Device)):
+            raise MorsecError(f"{module_path} has no component class {target}: rebuild the scene")
+        return found
     root = data_dir("components") if ref.root == BUILTIN_ROOT else Path(ref.root)
     folder = root / ref.kind / ref.id
     if not (folder / "component.py").is_file():
@@ -372,6 +510,7 @@ def level_class(cls: type[Device], level: str | None) -> type[Device]:
     """The class implementing `level` (add_level's classpath), defined in the same component.py."""
     for lv in cls.levels:
         if lv.name == level and lv.cls:
-            module = sys.modules[cls.__module__]
-            return getattr(module, lv.cls)
+            module_name, _, name = lv.cls.rpartition(".")  # a class path: another module's class (MORSE's levels)
+            module = importlib.import_module(module_name) if module_name else sys.modules[cls.__module__]
+            return getattr(module, name)
     return cls

@@ -121,6 +121,12 @@ class Device(Component):
     # keys besides the declared fields, named at run time (an armature's joints, a compound's sensors): one
     # DataField giving their type and meaning ("<joint>": float); None: no other key
     extra_field: ClassVar[DataField | None] = None
+    # a class found by its dotted path rather than in a component folder (a MORSE-API component of a `morse
+    # create` folder's src/: morse.core.sensor.Sensor's subclasses): the path, which is also its id, and the
+    # folder it is imported from. Set by the catalogue; such a class has no builder class of its own (its
+    # SensorCreator / ActuatorCreator names it by `_classpath`)
+    classpath: ClassVar[str | None] = None
+    import_root: ClassVar[Any] = None
 
     @classmethod
     def default_level(cls) -> str | None:

@@ -18,7 +18,7 @@ import numpy as np
 
 from morsec.component.catalogue import load_class
 from morsec.constants import MAX_SPEED, PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
-from morsec.errors import MorsecError, RuntimeFailure
+from morsec.errors import MorsecError, RuntimeFailure, Unsupported
 from morsec.middleware.base import Middleware, RunContext
 from morsec.middleware.poller import Poller
 from morsec.middleware.registry import middleware
@@ -193,6 +193,9 @@ class Simulation:
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
+        except Unsupported:  # its line names the component's own file and line
+            self.poller.close()
+            raise
         except MorsecError as err:
             self.poller.close()
             raise RuntimeFailure(f"{build_dir}: {err}") from None
@@ -807,6 +810,8 @@ class Simulation:
                     if echo.listening:
                         echo.publish(message, self.clock.now())
             comp.instance.default_action()
+        except Unsupported:  # the component needs what morsec does not do: the run stops, with its line
+            raise
         except Exception as err:  # a bad command must not stop the simulation
             comp.fail_once(err)
 
@@ -829,6 +834,8 @@ class Simulation:
             inst.default_action()
             for modifier in comp.modifiers:
                 modifier.modify(inst.local_data)
+        except Unsupported:
+            raise
         except Exception as err:
             comp.fail_once(err)
             return

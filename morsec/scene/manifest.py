@@ -33,6 +33,8 @@ class ComponentRef(Entry):
     kind: Literal["robots", "sensors", "actuators", "environments", "props"]
     id: str
     name: str = Field(description="the class declared by COMPONENT")
+    module: str | None = Field(None, description="a class named by its dotted path (a MORSE-API component): its "
+                               "module, imported from `root`; `id` is the class path")
 
 
 class Loop(Entry):

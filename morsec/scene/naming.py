@@ -11,6 +11,12 @@ from typing import Any
 from morsec.constants import DUPLICATE_SUFFIX, SEPARATOR
 
 
+def type_name(type_id: str) -> str:
+    """The name an unnamed entry takes from its type: the id; for a class path (a MORSE-API component,
+    `mysim.sensors.thermometer.Thermometer`), its module's name (`thermometer`): names hold no dots."""
+    return type_id.rsplit(".", 2)[-2] if "." in type_id else type_id
+
+
 def assign_names(entries: list[Any], default, on_duplicate) -> list[str]:
     """Fill `name` on each entry (pydantic models); `on_duplicate(index, name)` reports explicit clashes."""
     taken: set[str] = set()

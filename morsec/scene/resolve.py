@@ -12,7 +12,7 @@ from morsec.middleware.base import StreamRequest
 from morsec.middleware.registry import middleware as middleware_class
 from morsec.middleware.registry import service_middlewares
 from morsec.scene.models import StreamSpec, StreamSpecBase
-from morsec.scene.naming import assign_names
+from morsec.scene.naming import assign_names, type_name
 from morsec.scene.sourcemap import SourceMap
 from morsec.scene.walk import walk_children
 
@@ -126,7 +126,7 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
                       env_properties: dict):
     for c in components:
         c.type = cat.resolve("sensors", c.type) or cat.resolve("actuators", c.type)
-    assign_names(components, default=lambda c: c.type,
+    assign_names(components, default=lambda c: type_name(c.type),
                  on_duplicate=lambda i, name: fail(parent_path + ("components", i, "name"),
                                                    f"duplicate component name {name!r} under the same parent"))
     devices = cat.devices()
@@ -144,7 +144,7 @@ def _resolve_children(components: list, parent_path: tuple, default_interface: s
             # a component the middleware has no message for is left out (ROS: a thermometer), as named ones
             # are refused below
             if not comp.streams and not middleware_class(default_interface).check_stream(StreamRequest(
-                    comp.name or comp.type, cls.direction, {}, type_lineage(cls),
+                    comp.name or type_name(comp.type), cls.direction, {}, type_lineage(cls),
                     comp.properties.model_dump(mode="json"))):
                 _add_stream(comp, cls, default_interface)
             if not comp.services:

@@ -4,6 +4,7 @@ with its own `properties` and `level`, joined in a union discriminated on `type`
 from __future__ import annotations
 
 import json
+import re
 from functools import lru_cache
 from typing import Annotated, Any, Literal, Union
 
@@ -17,12 +18,19 @@ from morsec.scene import models as m
 GENERATED_MODULE = "morsec.scene.generated"
 
 
+def _model_name(cid: str) -> str:
+    """A model's name from a type id (a class path's dots too: a MORSE-API component's)."""
+    return camel_case(re.sub(r"\W", "_", cid))
+
+
 def _properties_model(cls) -> type[ComponentProperties]:
-    return create_model(f"{camel_case(cls.id)}{cls.kind.capitalize()}Properties", __base__=cls.Properties,
+    return create_model(f"{_model_name(cls.id)}{cls.kind.capitalize()}Properties", __base__=cls.Properties,
                         __module__=GENERATED_MODULE, __doc__=f"Properties of {cls.id!r}.")
 
 
 def _type_literal(cls) -> Any:
+    if getattr(cls, "classpath", None):  # a MORSE-API class: its path only (its class name may be a catalogue's)
+        return Literal[(cls.id,)]
     return Literal[tuple(sorted({cls.id, cls.builder_name}))]
 
 
@@ -58,7 +66,8 @@ def scene_model(cat: Catalogue, only: frozenset[str] | None = None) -> type[m.Sc
     again with the whole model, whose messages list every known type)."""
 
     def wanted(cls, first: bool) -> bool:  # the first of each kind too: a union needs one type at least
-        return only is None or first or cls.id in only or cls.builder_name in only
+        return only is None or first or cls.id in only or (cls.builder_name in only and not
+                                                            getattr(cls, "classpath", None))
 
     device_variants = []
     for i, (cid, cls) in enumerate(sorted(cat.devices().items())):
@@ -68,7 +77,7 @@ def scene_model(cat: Catalogue, only: frozenset[str] | None = None) -> type[m.Sc
         level_type: Any = (_literal(level_names) | None) if level_names else None
         props = _properties_model(cls)
         device_variants.append(create_model(
-            f"{camel_case(cid)}Component", __base__=m.ComponentBase, __module__=GENERATED_MODULE,
+            f"{_model_name(cid)}Component", __base__=m.ComponentBase, __module__=GENERATED_MODULE,
             __doc__=f"{cls.kind} {cid!r}: {cls.short_descr}",
             type=(_type_literal(cls), Field(description=f"{cid} ({cls.builder_name})")),
             properties=(props, Field(default_factory=props, description="the component's properties")),

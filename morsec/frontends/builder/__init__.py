@@ -82,6 +82,8 @@ def catalogue_classes(cat: Catalogue) -> dict[str, type]:
     bases = {"robots": CatalogueRobot, "sensors": SensorCreator, "actuators": ActuatorCreator, "props": CatalogueProp}
     for kind, base in bases.items():
         for cid, comp in sorted(cat.by_kind.get(kind, {}).items()):
+            if getattr(comp, "classpath", None):
+                continue  # a MORSE-API class: its builder class is the simulation's own (src/<sim>/builder)
             name = comp.builder_name or cid
             if not name.isidentifier() or name in FIXED or name in classes:
                 continue

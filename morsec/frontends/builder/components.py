@@ -20,6 +20,7 @@ from morsec.frontends.builder.session import BuilderAttributeError, BuilderError
 from morsec.middleware.refused import REFUSED, refusal
 from morsec.modifiers.registry import MODIFIERS
 from morsec.scene import models
+from morsec.scene.naming import type_name
 
 _PHYSICS_TYPES = {"STATIC": "static", "DYNAMIC": "dynamic", "RIGID_BODY": "rigid_body", "NO_COLLISION": "no_collision"}
 _INTERNAL_PROPERTIES = ("Component_Tag", "Robot_Tag", "External_Robot_Tag", "Zone_Tag")
@@ -176,7 +177,8 @@ class AbstractComponent:
             session.scan(frame)
 
     def _default_label(self) -> str:
-        return self._emit_type() or type(self).__name__.lower()
+        emitted = self._emit_type()
+        return type_name(emitted) if emitted else type(self).__name__.lower()
 
     def _morse_default_name(self) -> str:
         """The name MORSE gives an object no variable names: its .blend object's (the builder class name)."""
@@ -555,6 +557,10 @@ class AbstractComponent:
             kind, _, cid = ref.partition("/")
             if kind in kinds and cat.resolve(kind, cid):
                 return cat.resolve(kind, cid)
+        if "." in text and not text.startswith("morse."):  # a class of the simulation's own (src/<sim>/...)
+            found = cat.classpath(kinds, text)
+            if found:
+                return found
         parts = text.split(".")
         class_name = parts[-1]
         module = parts[-2] if len(parts) > 1 else None
@@ -571,8 +577,8 @@ class AbstractComponent:
         raise self._session.error(
             f"{type(self).__name__}: _classpath {text!r} names no component of the catalogue"
             f"{did_you_mean(class_name, names)} "
-            "(morsec does not load MORSE's Python component classes: write the component as a folder "
-            "components/<sensors|actuators>/<id>/component.py, see docs/builder.md)")
+            "(a class of your own is found by its path from the MORSE simulation's src/ folder, "
+            "e.g. 'mysim.sensors.thermo.Thermo', or written as a component folder: see docs/coming-from-morse.md)")
 
     # ---- emission
 

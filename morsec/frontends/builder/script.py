@@ -18,7 +18,7 @@ from pathlib import Path
 
 from pydantic import BaseModel
 
-from morsec.component.catalogue import Catalogue, load_catalogue
+from morsec.component.catalogue import Catalogue, load_catalogue, use_source
 from morsec.errors import MorsecError, SceneError, did_you_mean
 from morsec.frontends.builder import builder_names
 from morsec.frontends.builder import session as _session
@@ -102,6 +102,8 @@ def _running(session: Session, path: Path):
     saved_argv, saved_path = sys.argv, list(sys.path)
     sys.argv = [str(path)]
     sys.path.insert(0, str(path.resolve().parent))
+    for source in session.catalogue.sources:  # a MORSE simulation's src/: its builder classes and components
+        use_source(source)
     _session.push(session)
     try:
         yield
@@ -134,8 +136,8 @@ def script_error(err: BaseException, path: Path) -> SceneError:
     if isinstance(err, BuilderAttributeError):
         message = str(err)
     elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] == "morse":
-        message = (f"{type(err).__name__}: {err}: morsec provides morse.builder and morse.testing only "
-                   "(MORSE's core and middleware modules have no morsec equivalent)")
+        message = (f"{type(err).__name__}: {err}: morsec's morse package has morse.builder, morse.testing and "
+                   "the parts of morse.core and morse.helpers MORSE's components use (docs/coming-from-morse.md)")
     elif isinstance(err, ModuleNotFoundError) and (err.name or "").split(".")[0] in ("bpy", "bge", "mathutils"):
         message = f"{type(err).__name__}: {err}: morsec runs without Blender; its Python modules do not exist"
     else:
