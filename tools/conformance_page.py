@@ -62,9 +62,9 @@ EXCEPTIONS = {
 # failures looked into, and why they remain (said after the first failure of the log)
 ANALYSED = {
     "base/accelerometer_testing.py": "the test reads the frame a command took effect at right after `sleep(0.01)`, "
-    "once with `get()` and then another stream with `last()`; the two messages leave 2 ms apart (MESSAGE_GAP, "
-    "docs/running.md) so that pymorse's polling thread reads the second before the first wakes `get()`; a machine "
-    "too loaded to run that thread within 2 ms still has it read both together, in the order it opened them",
+    "once with `get()` (the message must come after the sleep's answer) and once with `last()` (it must have come "
+    "before); pymorse's polling thread reads its sockets in the order it opened them, and MORSE met both at "
+    "Blender's pace, its sensors' messages milliseconds apart",
     "base/attitude_testing.py": "flaky (about 1 run in 6): while pitching and yawing, the Orientation actuator "
     "corrects the roll drift every few frames with a -0.5 rad/s kick; MORSE created the attitude sensors before it "
     "and ran them in the same logic tick, reading the velocity it had just set, which kept the kick off the frames "

@@ -44,14 +44,6 @@ ANSWER_GAP = 0.002
 # wait: the answers to sleeps leave at least READER_POLL (wall clock) after a client connected to a sensor stream,
 # so that it has read the messages the stream sent it before (the frame its sleep ended at)
 READER_POLL = 0.015
-# while the loop has time to spare before its next frame, a frame's sensor messages leave MESSAGE_GAP apart (at
-# least MIN_MESSAGE_GAP: a poll's wait counts in milliseconds), within MESSAGE_SHARE of that time: a client's
-# polling thread (pymorse's) reads each before the next comes, so that `a.get(); b.last()` on two sensors of a
-# frame finds b's message when a's wakes it (b created after a sends first); together, pymorse reads them in
-# the order it opened their streams, and a's wakes get() while b's is still being read
-MESSAGE_GAP = 0.002
-MIN_MESSAGE_GAP = 0.001
-MESSAGE_SHARE = 0.5
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 PAUSED_POLL = 0.02  # s of wall time between two looks at a paused viewer (requests are served meanwhile)
 DEBUG_FIELDS = 6  # a component's data fields listed by show_debug, at most
@@ -635,7 +627,7 @@ class Simulation:
                         continue
                 if started is None:
                     started = time.perf_counter()
-                self.frame(spread=True)  # ends with a flush
+                self.frame()  # ends with a flush
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
@@ -671,13 +663,13 @@ class Simulation:
             self.poller.poll(left)
             self._flush()
 
-    def frame(self, spread: bool = False) -> None:
-        """One frame: the physics and the components (step), then the sensors' messages sent (with `spread`,
-        a little apart while the loop has time to spare, see MESSAGE_GAP). The answers to the sleeps that ended
-        at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a client holding such an answer
-        has had this frame's messages for a while, whatever order its polling thread reads its sockets in."""
+    def frame(self) -> None:
+        """One frame: the physics and the components (step), then the sensors' messages sent. The answers
+        to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
+        client holding such an answer has had this frame's messages for a while, whatever order its polling
+        thread reads its sockets in."""
         self.step()
-        self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
+        self._send_sensor_messages()
         self._flush()
 
     def answer(self) -> None:
@@ -735,28 +727,15 @@ class Simulation:
         if self.foxglove is not None:  # also while no frame runs (a client awaited, lockstep): Foxglove still sees
             self.foxglove.frame(self.data, self.clock.now())
 
-    def _send_sensor_messages(self, within: float = 0.0) -> None:
+    def _send_sensor_messages(self) -> None:
         """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a
         client whose sleep ended reads this frame's data with `last()`. Sensors created last send first, as
         MORSE ran the logic of the object created last first: a client reading one stream with `get()` then
-        another with `last()` finds both. Within `within` wall-clock seconds, they leave MESSAGE_GAP apart
-        (requests are served meanwhile); those left when that time runs out leave together."""
+        another with `last()` finds both."""
         outbox, self.outbox = self.outbox, []
-        gap = min(MESSAGE_GAP, within / (len(outbox) - 1)) if len(outbox) > 1 else 0.0
-        until = time.perf_counter() + within
-        for k, (streams, message) in enumerate(reversed(outbox)):
-            if k and gap >= MIN_MESSAGE_GAP and time.perf_counter() + gap <= until:
-                self._pause(gap)
+        for streams, message in reversed(outbox):
             for stream in streams:
                 stream.publish(message)
-
-    def _spare(self) -> float:
-        """Wall-clock seconds before the next frame is due: none when fixed_step runs free or a lockstep
-        client paces the loop."""
-        if self.sync is not None and self.sync.engaged:
-            return 0.0
-        paced = self.hold is not None and bool(self.hold.awake) and self.hold.pacing()
-        return self.clock.spare(paced)
 
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
