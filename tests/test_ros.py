@@ -293,6 +293,57 @@ def test_an_armature_overlay_serves_ros_controller_actions(simulate, tmp_path):
     assert rejected == "5"  # REJECTED
 
 
+def test_a_waypoint_goal_cancelled_or_preempted_stops_the_robot(simulate, tmp_path):
+    """MORSE's WayPoint overlay (move_base) and MORSE's frame order: a goal's `goto` starts at the end of the
+    frame after it came, and cancelling the goal (send_goal_and_wait's timeout) cancels it all the same: the
+    robot, which drove 1 m/s, stops (it slides, as MORSE's did, no more); a second client's goal preempts the
+    first one's, which is told so, and reaches its own goal."""
+    source = tmp_path / "waypoint.py"
+    source.write_text(textwrap.dedent("""
+        from morse.builder import *
+        robot = ATRV()
+        odometry = Odometry()
+        robot.append(odometry)
+        odometry.add_stream('ros')
+        waypoint = Waypoint()
+        robot.append(waypoint)
+        waypoint.add_overlay('ros', 'morse.middleware.ros.overlays.waypoints.WayPoint')
+        env = Environment('empty')
+    """), encoding="utf-8")
+    simulate(source, "best_effort")
+    client = subprocess.run([SYSTEM_PYTHON, "-c", textwrap.dedent("""
+        import time
+        import rospy, actionlib
+        from geometry_msgs.msg import Point, Pose, PoseStamped, Quaternion
+        from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+        from nav_msgs.msg import Odometry
+        rospy.init_node('waypoint_client', disable_signals=True)
+        def x():
+            return rospy.wait_for_message('/robot/odometry', Odometry, timeout=10).pose.pose.position.x
+        def goal(x, y):
+            return MoveBaseGoal(PoseStamped(pose=Pose(Point(x, y, 0.0), Quaternion(0.0, 0.0, 0.0, 1.0))))
+        first = actionlib.SimpleActionClient('/robot/waypoint/move_base', MoveBaseAction)
+        second = actionlib.SimpleActionClient('/robot/waypoint/move_base', MoveBaseAction)
+        assert first.wait_for_server(rospy.Duration(10)) and second.wait_for_server(rospy.Duration(10))
+        print(first.send_goal_and_wait(goal(10.0, 0.0), rospy.Duration(1)))
+        before = x()
+        time.sleep(1.0)
+        print(before, x())
+        first.send_goal(goal(10.0, 0.0))
+        time.sleep(0.5)
+        second.send_goal(goal(before + 1.5, 0.0))
+        print(first.wait_for_result(rospy.Duration(5)) and first.get_state(),
+              second.wait_for_result(rospy.Duration(10)) and second.get_state())
+    """)], capture_output=True, text=True, timeout=90)
+    assert client.returncode == 0, client.stderr
+    cancelled, positions, preempted = client.stdout.strip().splitlines()
+    assert cancelled == "2"  # actionlib's GoalStatus.PREEMPTED
+    before, after = (float(v) for v in positions.split())
+    assert before > 0.5  # it drove for most of the second
+    assert after - before < 0.25  # stopped, sliding (0.2 m from 1 m/s at most); it drove on at 1 m/s before
+    assert preempted == "2 3"  # PREEMPTED, SUCCEEDED
+
+
 def test_building_a_ros_scene_leaves_this_python_as_it_was(tmp_path):
     """A build only asks whether ROS is there: Debian's folder is not added to the compiling process's path
     (what else that process imports, and the build cache's key, stay the same)."""

@@ -347,6 +347,26 @@ def test_new_actuator_stream_connections_are_waited_for_briefly(launch):
     assert rate > 5, f"{rate:.1f} simulated s per wall s"
 
 
+def test_after_waiting_for_a_new_stream_frames_keep_the_wall_clocks_pace(launch):
+    """MORSE's battery test in fixed_step: pymorse opens the teleport's stream, which stays silent, and then
+    reads the battery with `get()`: the loop waits for the stream's first line (SLEEP_HOLD_WAIT) and that
+    wait is not owed: the frame after the wait is followed by the next a frame's time later, not at once, so
+    that a client's reply to the first frame's message (`get(); sleep(2)`) arrives before the next frame."""
+    sim = launch(paced_sim)
+    with sim.client() as client, sim.stream("robot.pose") as pose:
+        client.ok("time", "now")  # its first request: the wall clock's pace until its first sleep
+        pose.json()
+        with sim.stream("robot.motion"):  # silent
+            arrived = time.monotonic()
+            while True:
+                message = pose.json()
+                arrived, gap = time.monotonic(), time.monotonic() - arrived
+                if gap > 0.1:  # the first frame after the wait
+                    break
+            time.sleep(0.005)  # pymorse's reply takes a few milliseconds (its polling thread, its get())
+            assert client.ok("time", "now") == pytest.approx(message["timestamp"], abs=1e-6)
+
+
 def test_a_client_that_reads_a_stream_after_its_sleep_reads_the_next_frame(launch):
     """`sleep; pose.get()`: the stream needs frames; they come at the wall clock's pace, the first one right
     after the sleep's end, whether the client says something first or not."""

@@ -642,7 +642,10 @@ class Simulation:
     def run(self, duration: float | None = None) -> None:
         next_poll = 0.0
         started = None
-        paused = False
+        # the loop stood still (a viewer's pause, a client awaited, a new actuator stream's first message
+        # awaited): that wall-clock time is not owed, the frame after the next one comes a frame's time later
+        # (a burst of two frames would run one between a stream's message and the client's reply to it)
+        stood_still = False
         try:
             while not self.quitting:
                 if duration is not None and self.clock.elapsed >= duration - 1e-9:
@@ -663,15 +666,16 @@ class Simulation:
                     else:
                         self.poller.poll(MAX_POLL_WAIT / 20)
                         self._flush()
+                        stood_still = True
                         continue
                 if self.view is not None and self.view.paused:  # the viewer's pause (space): no frame runs
                     self.view.sync()
                     self._pause(PAUSED_POLL)
-                    paused = True
+                    stood_still = True
                     continue
-                if paused:  # the wall clock's pace from now: the paused time is not owed
+                if stood_still:  # the wall clock's pace from now
                     self.clock.restart()
-                    paused = False
+                    stood_still = False
                 if self.sync is not None and self.sync.engaged:
                     if not self.sync.take():
                         self.poller.poll(0.01)
@@ -682,6 +686,7 @@ class Simulation:
                     if held > 0:
                         self.poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
+                        stood_still = True
                         continue
                 if started is None:
                     started = time.perf_counter()

@@ -209,6 +209,36 @@ zones:
         assert h.data("r.battery") == {"timestamp": pytest.approx(22.0), "charge": 100.0, "status": "Charged"}
 
 
+def test_battery_charge_is_exact_to_the_frame(tmp_path):
+    """The charge follows the frames elapsed, not a sum of float steps: after n frames at 10 %/s it is exactly
+    100 - 10 n / 60, so that 123 frames read by MORSE's battery test are -20.5, not -20.500000000000583 (which
+    fails its 20 +- 0.5); across a charging zone's edge, the frames before and after each count once."""
+    text = """
+environment: {name: empty, time: {strategy: fixed_step, relative: true}}
+robots:
+  - name: r
+    type: fake_robot
+    components:
+      - {name: battery, type: battery, properties: {DischargingRate: 10.0}}
+zones:
+  - {type: Charging, translate: [10.0, 0.0, 0.0], size: [2.0, 2.0, 2.0]}
+"""
+    with simulate(text, tmp_path) as h:
+        h.step(54)
+        before = h.data("r.battery")["charge"]
+        h.step(123)
+        after = h.data("r.battery")["charge"]
+        assert (before, after) == (100.0 - 10.0 * 54 / 60, 100.0 - 10.0 * 177 / 60)
+        assert after - before == -20.5
+        h.step(500 - 177)
+        assert h.data("r.battery")["charge"] == 100.0 - 10.0 * 500 / 60
+        _, rot = h.body_pose("r")
+        h.sim.place_body(h.sim.robots[0].handle.body_id, [10.5, 0.5, 0.0], rot)
+        h.step(30)  # the first of them discharges up to the frame the robot was put there, then it charges
+        assert h.data("r.battery") == {"timestamp": pytest.approx(530 / 60), "status": "Charging",
+                                       "charge": (100.0 - 10.0 * 500 / 60) + 10.0 * 30 / 60}
+
+
 def test_battery_never_goes_below_zero(tmp_path):
     text = """
 environment: {name: empty, time: {strategy: fixed_step, relative: true}}

@@ -25,21 +25,26 @@ class Battery(Sensor):
     )
 
     def start(self):
-        self.previous_time = self.sim.clock.elapsed  # simulated seconds (exact, unlike epoch timestamps)
+        # the charge changes linearly from an anchor, (frame count, charge, charging), taken where the zone
+        # changed: computed from the frames elapsed, not summed a tick at a time (floating-point error grows
+        # with each sum, and MORSE's tests read the charge to the frame: `sleep(2)` is 20.0 +- 0.5 at 10 %/s)
+        self.previous_frames = self.sim.clock.frames
+        self.anchor: tuple[int, float, bool] | None = None
 
     def default_action(self):
-        now = self.sim.clock.elapsed
-        dt, self.previous_time = now - self.previous_time, now
-        rate = self.properties.DischargingRate
-        charge = float(self.local_data["charge"])
-        if self.sim.zones_at(self.position(), CHARGING_ZONE):
-            charge += dt * rate
-            status = "Charging"
+        frames = self.sim.clock.frames
+        charging = bool(self.sim.zones_at(self.position(), CHARGING_ZONE))
+        if self.anchor is None or self.anchor[2] != charging:  # the time since the last tick counts in the new zone
+            self.anchor = (self.previous_frames, float(self.local_data["charge"]), charging)
+        self.previous_frames = frames
+        since, charge, _ = self.anchor
+        change = self.properties.DischargingRate * (frames - since) / self.sim.clock.frequency
+        if charging:
+            charge, status = charge + change, "Charging"
             if charge >= 100.0:
                 charge, status = 100.0, "Charged"
         else:
-            charge = max(0.0, charge - dt * rate)
-            status = "Discharging"
+            charge, status = max(0.0, charge - change), "Discharging"
         self.local_data["charge"] = float(charge)
         self.local_data["status"] = status
 

@@ -91,7 +91,8 @@ class ActionOverlay:
                 log.debug("%s: goal already finished: %s", self.component, err)
 
         request = self.node.call(self.component, service, args, done, client=self)
-        if self.node.context.requests.is_running(request):
+        # running, or waiting for the end of the next frame to start (MORSE's frame order): cancelled either way
+        if self.node.context.requests.pending(request):
             self.active = (handle, request)
 
     def _preempt(self) -> None:
