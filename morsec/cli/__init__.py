@@ -21,7 +21,7 @@ from morsec import __version__
 COMMANDS = {
     "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "docs": "catalogue",
     "render": "running", "components": "catalogue", "convert": "scenes", "create": "scaffold", "add": "scaffold",
-    "rm": "scaffold", "import-blend": "scaffold", "sweep": "sweeping",
+    "rm": "scaffold", "import-blend": "scaffold", "sweep": "sweeping", "multinode-server": "multinode",
 }
 
 

@@ -48,6 +48,9 @@ def run(
         "--wait-for-client", help="no frame runs before a client's first request or stream connection, and the "
         "simulation ends when the service clients that made requests have all left (runs started with their "
         "client, as `morsec sweep` does)")] = False,
+    node: Annotated[str | None, typer.Option(
+        "--node", "--name", help="multinode scenes: this node's name in the distribution (default: $MORSE_NODE, "
+        "else the host name); see `morsec multinode-server`")] = None,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -69,7 +72,7 @@ def run(
         build_dir = prepare_build(scene, out)
         options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
-                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client)
+                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client, node=node)
         simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)

@@ -30,6 +30,7 @@ from morsec.runtime.supervision import Communication, Supervision, TimeServices
 from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_manifest
 
 if TYPE_CHECKING:
+    from morsec.runtime.multinode import MultinodeLink
     from morsec.runtime.view import Status, View
 
 log = logging.getLogger("morsec.runtime")
@@ -60,6 +61,7 @@ class RunOptions:
     view: str | None = None  # "web" | "native": watch the simulation
     view_port: int = 8080
     wait_for_client: bool = False  # no frame before a client's first request or stream connection (sweeps)
+    node: str | None = None  # multinode: this node's name (None: $MORSE_NODE, else the host name)
 
 
 @dataclass
@@ -136,6 +138,15 @@ class Simulation:
         self.options = options or RunOptions()
         build_dir = Path(build_dir)
         manifest = load_manifest(build_dir)
+        self.multinode: MultinodeLink | None = None  # one node of several (runtime.multinode), when the scene says
+        multinode = manifest.scene["environment"].get("multinode")
+        if multinode is not None:  # this node runs its own robots' components only
+            from morsec.runtime.multinode import NodePlan
+            node_plan = NodePlan.of(multinode, self.options.node)
+            manifest = node_plan.local(manifest)
+        elif self.options.node:
+            raise MorsecError(f"--node {self.options.node}: the scene is not split over nodes "
+                              "(no environment.multinode, MORSE's configure_multinode)")
         try:
             self.model = mujoco.MjModel.from_xml_path(str(build_dir / "scene.xml"))
         except (OSError, ValueError) as err:
@@ -221,6 +232,13 @@ class Simulation:
         self.middlewares: dict[str, Middleware] = {}
         self._open_middlewares(manifest)
         self.view: View | None = None
+        if multinode is not None:
+            from morsec.runtime.multinode import MultinodeLink
+            try:
+                self.multinode = MultinodeLink(self, node_plan)
+            except BaseException:
+                self.close()
+                raise
         self._show(env)
 
     def _show(self, env: dict) -> None:
@@ -528,6 +546,8 @@ class Simulation:
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
+        if self.multinode is not None:
+            lines.append(self.multinode.describe())
         if self.view is not None and self.view.paused:
             lines.append(f"PAUSED (auto_start is false): in the viewer, {self.view.resume_hint}")
         out.write("\n".join(lines) + "\n")
@@ -620,6 +640,8 @@ class Simulation:
         to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
         client holding such an answer has had this frame's messages for a while, whatever order its polling
         thread reads its sockets in."""
+        if self.multinode is not None:  # the other nodes' robots placed; held here while this node runs ahead
+            self.multinode.exchange()
         self.step()
         self._send_sensor_messages()
         self._flush()
@@ -739,6 +761,9 @@ class Simulation:
         for mw in getattr(self, "middlewares", {}).values():
             mw.close()
         self.middlewares = {}
+        link = getattr(self, "multinode", None)  # None: not a node, or __init__ stopped before connecting
+        if link is not None:
+            link.close()
         self.poller.close()
 
 
