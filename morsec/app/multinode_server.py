@@ -2,8 +2,8 @@
 processes (docs/multinode.md). Each node sends the poses of its robots once a frame with its simulated time
 (morsec.middleware.multinode) and waits for the answer: the last known poses of every other node's robots.
 
-Time stays consistent: a node's answer is held while its simulated time is more than one of its frames ahead
-of the slowest node still connected, so no node runs ahead of the others, whatever its time strategy. A node
+Time stays consistent: a node's answer is held while its simulated time is ahead of the slowest node still
+connected, so the nodes' clocks stay within one frame of each other, whatever their time strategies. A node
 that disconnects is reported; its robots stay where they were last seen, and it holds no one any more. As
 MORSE's, the server can slow every node down (DELAY: wall-clock seconds at least between two answers to a
 node) and pause them all (p then Enter on its terminal).
@@ -113,12 +113,13 @@ class MultinodeServer(Server):
 
     # ---- answers
     def held(self, node: Node) -> bool:
-        """Whether `node` runs ahead: its time more than one of its frames past the slowest other node's."""
+        """Whether `node` runs ahead: its time past the slowest other node's. Each node sends its time before
+        its frame, so the nodes' clocks are never more than one frame apart; the slowest is never held."""
         if node.time is None:
             return False
         others = [other.time for other in self.nodes.values()
                   if other is not node and other.time is not None and other.name != node.name]
-        return bool(others) and node.time > min(others) + node.dt + EPSILON
+        return bool(others) and node.time > min(others) + EPSILON
 
     def answer(self) -> float | None:
         """Answer every waiting node whose turn it is; the wall-clock seconds until a DELAY lets the next one

@@ -2,8 +2,9 @@
 
 The node simulates the robots the scene's distribution gives it: their components tick (cameras render), their
 streams and services are served here. Every other robot is a ghost: kinematic — placed where the multinode
-server last saw it, held there through the physics, colliding with this node's moving bodies but not with the
-static world nor with other ghosts (its owner simulates its collisions) — and none of its components runs.
+server last saw it and held there through the physics (too heavy for anything to move it), a wall to this
+node's moving bodies but touching neither the static world nor other ghosts (its owner simulates its
+collisions) — and none of its components runs.
 
 At the start of every frame (`Simulation.frame`'s hook) the node sends its robots' poses and its simulated time
 to the server and waits for the answer, serving its own clients meanwhile: the server holds a node that runs
@@ -36,6 +37,9 @@ CONNECT_WAIT = 5.0  # wall-clock s: a node started with (or just before) its ser
 JOIN_POLL = 0.05  # wall-clock s between two looks for the nodes not connected yet, before the first frame
 ANSWER_POLL = 0.05  # wall-clock s: the longest single wait on the sockets while the server holds this node
 GHOST_BIT = 1 << 3  # contype bit of ghost geoms; the moving bodies of this node have it in their conaffinity
+# armature (kg, kg m^2) of a ghost's degrees of freedom: within a frame neither gravity nor a robot pushing it
+# moves it (1e-8 m), as a kinematic body; MuJoCo's gravity compensation cannot be switched on after compiling
+GHOST_ARMATURE = 1e6
 
 
 def node_name(option: str | None) -> str:
@@ -271,6 +275,7 @@ class Ghosts:
         m.geom_conaffinity[moving & solid] |= GHOST_BIT
         m.geom_contype[ghost & solid] = GHOST_BIT
         m.geom_conaffinity[ghost & solid] = 0
+        m.dof_armature[np.isin(m.dof_bodyid, ghost_bodies)] = GHOST_ARMATURE
         for body, joint in self.bodies.values():
             if joint is not None:
                 sim.set_frozen(body, True)
