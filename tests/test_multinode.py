@@ -10,10 +10,13 @@ import json
 import math
 import os
 import queue
+import re
 import shutil
 import signal
 import socket
 import subprocess
+import sys
+import textwrap
 import threading
 import time
 from pathlib import Path
@@ -382,34 +385,45 @@ def test_the_tutorial_scene_and_its_yaml_twin_are_the_same_scene():
     assert script["environment"]["multinode"]["distribution"] == {"nodeA": ["atrv"], "nodeB": ["atrv_001"]}
 
 
+def tutorial_client() -> str:
+    """The client of docs/multinode.md's tutorial (its python block)."""
+    page = (REPO / "docs" / "multinode.md").read_text(encoding="utf-8")
+    section = page.split("## MORSE's tutorial", 1)[1]
+    block = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    return textwrap.dedent(block)
+
+
 def test_morses_multinode_tutorial_runs_as_docs_multinode_prints_it(tmp_path):
-    """docs/multinode.md's commands, in a copy of scenes/multinode: the server on its default port, then
-    `export PYTHONPATH=$PYTHONPATH:.`, `export MORSE_NODE=nodeA` (nodeB) and `morsec run tutorial-socket.py`, on
-    the default ports (services 4000 and 4001, streams from 60000); a client drives nodeA's robot and nodeB
-    sees it move."""
+    """docs/multinode.md's tutorial, in a copy of scenes/multinode: `morsec multinode-server 0.01`, then
+    `export PYTHONPATH=$PYTHONPATH:.`, `export MORSE_NODE=nodeA` (then nodeB) and `morsec run tutorial-socket.py`,
+    on the default ports; the page's client drives nodeA's robot two metres, and both nodes have it there."""
     folder = tmp_path / "multinode"
     shutil.copytree(TUTORIAL, folder, ignore=shutil.ignore_patterns("build", "__pycache__"))
+    (folder / "drive.py").write_text(tutorial_client(), encoding="utf-8")
     env = dict(os.environ, PYTHONPATH=os.pathsep.join([os.environ.get("PYTHONPATH", ""), "."]), PYTHONUNBUFFERED="1")
-    server = subprocess.Popen([str(MORSEC), "multinode-server"], stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                              text=True, start_new_session=True)
+    server = subprocess.Popen([str(MORSEC), "multinode-server", "0.01"], stdin=subprocess.DEVNULL,
+                              stdout=subprocess.PIPE, text=True, start_new_session=True)
     nodes: list[Morsec] = []
     try:
         assert server.stdout.readline().startswith("MULTINODE SERVER 127.0.0.1:65000")
-        for name in ("nodeA", "nodeB"):
+        for name in ("nodeA", "nodeB"):  # nodeA first: it has the service port 4000
             sim = Morsec(folder / "tutorial-socket.py", folder, cwd=folder, prebuild=False, service_port="auto")
             sim.command = [str(MORSEC), "run", "tutorial-socket.py"]
             sim.proc = subprocess.Popen(sim.command, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                         text=True, env={**env, "MORSE_NODE": name}, start_new_session=True)
             for pipe, sink, forward in ((sim.proc.stdout, sim.stdout, True), (sim.proc.stderr, sim.stderr, False)):
                 threading.Thread(target=sim._pump, args=(pipe, sink, forward), daemon=True).start()
-            nodes.append(sim)
-        a, b = (sim.wait_ready() for sim in nodes)
-        assert {a.service_port, b.service_port} == {4000, 4001}  # the first to start has 4000
+            nodes.append(sim.wait_ready())
+        a, b = nodes
+        assert (a.service_port, b.service_port) == (4000, 4001)
         assert a.port("atrv.motion") == 60001 and b.port("atrv_001.motion") == 60005
         assert "atrv_001.motion" not in a.streams and "atrv.motion" not in b.streams
-        with a.stream("atrv.motion") as motion:
-            motion.send('{"v": 1.0, "w": 0.0}\n')
-            assert eventually(lambda: poses(b)["atrv"][0] > 1.0, timeout=60), poses(b)
+        result = subprocess.run([sys.executable, "drive.py"], cwd=folder, capture_output=True, text=True,
+                                timeout=120)
+        assert result.returncode == 0, result.stderr
+        printed = dict(line.split(": ", 1) for line in result.stdout.splitlines())
+        on_a, on_b = json.loads(printed["nodeA"]), json.loads(printed["nodeB"])
+        assert 1.8 < on_a[0] < 2.6 and on_b == pytest.approx(on_a, abs=0.02)
     finally:
         stop_all(*nodes)
         server.terminate()
