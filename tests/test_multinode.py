@@ -296,6 +296,28 @@ def test_a_node_killed_is_reported_and_the_others_go_on(tmp_path):
             stop_all(a, b, c)
 
 
+def test_nodes_go_on_alone_when_the_server_stops(tmp_path):
+    """The server stopped: each node says so once and goes on, the other nodes' robots where last seen."""
+    server = Hub(free_port())
+    scene = world(server.port, {"nodeA": ["dala1"], "nodeB": ["dala2"]}, [robot("dala1"), robot("dala2", x=5.0)])
+    build = build_folder(scene_file(tmp_path, scene), tmp_path / "build")
+    peer = Peer(server.port, "nodeB")
+    try:
+        peer.exchange({"dala2": [[4.0, 1.0, 0.1], [0.0, 0.0, 0.0]]}, 0.0)
+        with node(build, tmp_path, "nodeA") as a:
+            assert eventually(lambda: poses(a)["dala2"] == pytest.approx([4.0, 1.0, 0.1], abs=1e-6))
+            server.stop()
+            assert eventually(lambda: any("multinode server at 127.0.0.1" in line and "lost" in line
+                                          for line in a.stderr)), a.output()
+            before = now(a)
+            time.sleep(0.5)
+            assert now(a) > before + 0.2
+            assert poses(a)["dala2"] == pytest.approx([4.0, 1.0, 0.1], abs=1e-6)
+    finally:
+        peer.close()
+        server.stop()
+
+
 # ------------------------------------------------------------------------------------------- the server
 def test_the_server_speaks_morses_wire_and_checks_poses():
     """MORSE's multinode_server: each node gets the other nodes' robots back (not its own), and a pose that
