@@ -157,21 +157,23 @@ def eventually(check, timeout: float = 30.0, every: float = 0.1):
 # ------------------------------------------------------------------------------------------- two nodes
 def test_a_robot_driven_on_one_node_moves_on_the_other(tmp_path):
     """dala1 is simulated by nodeA, dala2 (looking at dala1, 5 m away) by nodeB. Driven on nodeA, dala1 moves
-    on nodeB too: its ghost's pose and nodeB's semantic camera follow it; each node serves only its own robot's
-    streams."""
+    on nodeB too: its ghost's pose, nodeB's semantic camera and proximity sensor follow it; each node serves
+    only its own robot's streams."""
     camera = {"name": "camera", "type": "semantic_camera", "translate": [0.3, 0.0, 0.8], "streams": ["socket"]}
+    proximity = {"name": "proximity", "type": "proximity", "streams": ["socket"], "properties": {"Range": 10.0}}
     with hub() as server:
         scene = world(server.port, {"nodeA": ["dala1"], "nodeB": ["dala2"]},
-                      [robot("dala1"), robot("dala2", camera, x=5.0, yaw=math.pi)])
+                      [robot("dala1"), robot("dala2", camera, proximity, x=5.0, yaw=math.pi)])
         build = build_folder(scene_file(tmp_path, scene), tmp_path / "build")
         a, b = start_all(node(build, tmp_path, "nodeA"), node(build, tmp_path, "nodeB"))
         try:
             assert set(a.streams) == {"dala1.pose", "dala1.motion"}
-            assert set(b.streams) == {"dala2.pose", "dala2.motion", "dala2.camera"}
+            assert set(b.streams) == {"dala2.pose", "dala2.motion", "dala2.camera", "dala2.proximity"}
             server.wait_for("node nodeA connected")
             server.wait_for("node nodeB connected")
             start = poses(b)["dala1"]
-            with a.stream("dala1.motion") as motion, b.stream("dala2.camera") as camera_stream:
+            with a.stream("dala1.motion") as motion, b.stream("dala2.camera") as camera_stream, \
+                    b.stream("dala2.proximity") as proximity_stream:
                 motion.send('{"v": 1.0, "w": 0.0}\n')
                 assert eventually(lambda: poses(a)["dala1"][0] > 1.5), poses(a)
                 motion.send('{"v": 0.0, "w": 0.0}\n')
@@ -182,6 +184,9 @@ def test_a_robot_driven_on_one_node_moves_on_the_other(tmp_path):
                 camera_stream.drain()
                 seen = {o["name"]: o["position"] for o in camera_stream.json()["visible_objects"]}
                 assert seen["dala1"] == pytest.approx(own, abs=0.01)
+                proximity_stream.drain()
+                near = proximity_stream.json()["near_objects"]
+                assert near["dala1"] == pytest.approx(math.dist(own, poses(b)["dala2"]), abs=0.01)
             with b.client() as client:  # nodeB runs none of dala1's components
                 robots = {r["name"]: r for r in client.ok("simulation", "details")["robots"]}
                 assert robots["dala1"]["components"] == {} and "dala2.camera" in robots["dala2"]["components"]
