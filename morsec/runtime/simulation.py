@@ -1,7 +1,8 @@
 """The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
 
 Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps -> sensors
-due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any."""
+due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any. A node
+of a multinode world exchanges with its server first (runtime.multinode, the one hook at `frame`'s start)."""
 
 from __future__ import annotations
 
