@@ -10,6 +10,7 @@ STREAM_PORT_BASE = 60000
 SERVICE_PORT = 4000
 SERVICE_PORT_ATTEMPTS = 10
 SYNC_PORT = 6000
+MULTINODE_PORT = 65000  # MORSE's multinode_server
 DEFAULT_BIND = "127.0.0.1"
 FOXGLOVE_PORT = 8765  # `morsec run --foxglove`: Foxglove's own default
 

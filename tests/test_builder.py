@@ -499,6 +499,20 @@ ERRORS = {
         env = Environment('empty')
         env.configure_multinode(distribution={'nodeA': ['robot', 'nobody']})
         """, ("sim.py:4:1: environment.multinode.distribution.nodeA[1]", "'nobody'")),
+    "multinode_unassigned_robot": ("""
+        from morse.builder import *
+        dala1 = ATRV()
+        dala2 = ATRV()
+        env = Environment('empty')
+        env.configure_multinode(distribution={'nodeA': [dala1.name]})
+        """, "sim.py:5:1: environment.multinode.distribution: robot 'dala2' is on no node"),
+    "multinode_hla": ("""
+        from morse.builder import *
+        dala1 = ATRV()
+        env = Environment('empty')
+        env.configure_multinode(protocol='hla', server_port=60400, distribution={'nodeA': [dala1.name]})
+        """, ("sim.py:4:1: environment.multinode.protocol: protocol 'hla' needs an HLA run-time infrastructure",
+              "use protocol 'socket'")),
 }
 
 

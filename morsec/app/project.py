@@ -4,6 +4,9 @@ or building a scene whose build is up to date (morsec.app.buildcache), does not 
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
+from collections.abc import Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -65,10 +68,26 @@ def prepare_build(source: Path, out: Path | None = None) -> Path:
     from morsec.frontends.load import load_scene
     cat = load_catalogue(source.parent)
     files = compile_scene(load_scene(source, cat), cat)
-    if not _same(out_dir, files):
-        write_build(files, out_dir)
+    with _building(out_dir):  # the nodes of a multinode scene start side by side from the same scene file
+        if not _same(out_dir, files):
+            write_build(files, out_dir)
     buildcache.record(out_dir, key)
     return out_dir
+
+
+@contextlib.contextmanager
+def _building(out_dir: Path) -> Iterator[None]:
+    """One process at a time compares and writes `out_dir` (a lock file beside it): a second one finds the
+    first one's build, the same as its own, and leaves it alone."""
+    try:
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        lock = open(out_dir.parent / f".{out_dir.name}.lock", "a")  # noqa: SIM115
+    except OSError:  # a read-only place: write_build says why
+        yield
+        return
+    with lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
 
 
 def _same(out_dir: Path, files: dict[str, str | bytes]) -> bool:

@@ -22,7 +22,7 @@ COMMANDS = {
     "build": "scenes", "check": "scenes", "schema": "scenes", "run": "running", "replay": "running",
     "docs": "catalogue",
     "render": "running", "components": "catalogue", "convert": "scenes", "create": "scaffold", "add": "scaffold",
-    "rm": "scaffold", "import-blend": "scaffold", "sweep": "sweeping",
+    "rm": "scaffold", "import-blend": "scaffold", "sweep": "sweeping", "multinode-server": "multinode",
 }
 
 

@@ -59,6 +59,9 @@ def run(
         "JSON otherwise; docs/recording.md)")] = None,
     record_services: Annotated[bool, typer.Option(
         "--record-services", help="also record the service requests and their answers (with --record)")] = False,
+    node: Annotated[str | None, typer.Option(
+        "--node", "--name", help="multinode scenes: this node's name in the distribution (default: $MORSE_NODE, "
+        "else the host name); see `morsec multinode-server`")] = None,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
     import logging
@@ -85,7 +88,7 @@ def run(
                              port_base=port_base, seed=seed, view=view, view_port=view_port,
                              output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client,
                              foxglove=foxglove_port if foxglove else None,
-                             record=record, record_services=record_services)
+                             record=record, record_services=record_services, node=node)
         simulated, wall = run_simulation(build_dir, options, duration)
     except MorsecError as err:
         fail(err)

@@ -24,7 +24,9 @@ REFUSED = {r.name: r for r in (
     Refused("pocolibs", "pocolibs (GenoM 2's posters) comes only from LAAS's robotpkg, neither on PyPI nor in "
             "Debian", "use ros (GenoM 3 generates ROS components) or socket (MORSE's protocol)"),
     Refused("hla", "HLA needs an RTI (CERTI), neither on PyPI nor in Debian (MORSE used it to split one "
-            "simulation across machines)", "use socket (MORSE's protocol) and one morsec per simulation"),
+            "simulation across machines)",
+            "use socket; to split one world across processes, configure_multinode(protocol='socket') "
+            "(docs/multinode.md)"),
 )}
 
 

@@ -1,7 +1,8 @@
 """The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
 
 Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps -> sensors
-due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any."""
+due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any. A node
+of a multinode world exchanges with its server first (runtime.multinode, the one hook at `frame`'s start)."""
 
 from __future__ import annotations
 
@@ -32,6 +33,7 @@ from morsec.scene.manifest import ComponentEntry, Manifest, RobotEntry, load_man
 if TYPE_CHECKING:
     from morsec.middleware.record.recorder import Recorder
     from morsec.runtime.foxglove.server import FoxgloveServer  # imported only when a run asks for it
+    from morsec.runtime.multinode import MultinodeLink
     from morsec.runtime.view import Status, View
 
 log = logging.getLogger("morsec.runtime")
@@ -65,6 +67,7 @@ class RunOptions:
     foxglove: int | None = None  # serve the simulation on Foxglove's WebSocket protocol on this port (0: the OS's)
     record: Path | None = None  # an MCAP file recording every stream (morsec.middleware.record)
     record_services: bool = False  # ... and the service requests and answers
+    node: str | None = None  # multinode: this node's name (None: $MORSE_NODE, else the host name)
 
 
 @dataclass
@@ -143,6 +146,15 @@ class Simulation:
         self.options = options or RunOptions()
         build_dir = Path(build_dir)
         manifest = load_manifest(build_dir)
+        self.multinode: MultinodeLink | None = None  # one node of several (runtime.multinode), when the scene says
+        multinode = manifest.scene["environment"].get("multinode")
+        if multinode is not None:  # this node runs its own robots' components only
+            from morsec.runtime.multinode import NodePlan
+            node_plan = NodePlan.of(multinode, self.options.node)
+            manifest = node_plan.local(manifest)
+        elif self.options.node:
+            raise MorsecError(f"--node {self.options.node}: the scene is not split over nodes "
+                              "(no environment.multinode, MORSE's configure_multinode)")
         try:
             self.model = mujoco.MjModel.from_xml_path(str(build_dir / "scene.xml"))
         except (OSError, ValueError) as err:
@@ -249,6 +261,13 @@ class Simulation:
         if record is not None:
             self._open_recording(manifest, Path(record), record_services)
         self.view: View | None = None
+        if multinode is not None:
+            from morsec.runtime.multinode import MultinodeLink
+            try:
+                self.multinode = MultinodeLink(self, node_plan)
+            except BaseException:
+                self.close()
+                raise
         self._show(env)
 
     def _show(self, env: dict) -> None:
@@ -634,6 +653,8 @@ class Simulation:
         width = max([len(c.fqn) for c in self.components] + [10])
         for fqn, direction, name, where in sorted(streams, key=lambda row: row[0]):
             lines.append(f"  {fqn:<{width}}  {direction:<3}  {name:<6}  {where}")
+        if self.multinode is not None:
+            lines.append(self.multinode.describe())
         if self.view is not None and self.view.paused:
             lines.append(f"PAUSED (auto_start is false): in the viewer, {self.view.resume_hint}")
         out.write("\n".join(lines) + "\n")
@@ -731,6 +752,8 @@ class Simulation:
         to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
         client holding such an answer has had this frame's messages for a while, whatever order its polling
         thread reads its sockets in."""
+        if self.multinode is not None:  # the other nodes' robots placed; held here while this node runs ahead
+            self.multinode.exchange()
         self.step()
         self._send_sensor_messages()
         self._flush()
@@ -871,6 +894,9 @@ class Simulation:
         if foxglove is not None:
             foxglove.close()
             self.foxglove = None
+        link = getattr(self, "multinode", None)  # None: not a node, or __init__ stopped before connecting
+        if link is not None:
+            link.close()
         self.poller.close()
         recorder = getattr(self, "recorder", None)
         if recorder is not None:  # last: it waits for its writer to finish the file

@@ -27,6 +27,7 @@ from morsec.constants import (
     FORBIDDEN_NAME_CHARS,
     MAX_TIME_SCALE,
     MIN_TIME_SCALE,
+    MULTINODE_PORT,
     TimeStrategy,
 )
 from morsec.errors import did_you_mean
@@ -265,10 +266,16 @@ class CameraSpec(Strict):
 
 
 class MultinodeSpec(Strict):
-    protocol: Literal["socket", "hla"] = Field("socket", description="multinode protocol")
+    """configure_multinode: the scene's robots split over several `morsec run --node NAME` processes."""
+
+    protocol: Literal["socket", "hla"] = Field(
+        "socket", description="multinode protocol: socket (`morsec multinode-server`); hla is refused (no HLA "
+        "run-time infrastructure can be installed)")
     server_address: str = Field("localhost", description="address of the multinode server")
-    server_port: Annotated[int, Field(ge=1, le=65535)] = Field(65000, description="port of the multinode server")
-    distribution: dict[str, list[Name]] = Field(default_factory=dict, description="node name -> robot names")
+    server_port: Annotated[int, Field(ge=1, le=65535)] = Field(MULTINODE_PORT,
+                                                               description="port of the multinode server")
+    distribution: dict[str, list[Name]] = Field(
+        default_factory=dict, description="node name -> the robots it simulates (every robot on one node)")
 
 
 class StreamManagerSpec(Strict):

@@ -112,14 +112,33 @@ def resolve(scene: Any, cat: Catalogue, smap: SourceMap | None = None) -> None:
 
     for k, middleware in enumerate(scene.environment.services):
         _check_available(middleware, ("environment", "services", k), fail)
-    multinode = scene.environment.multinode
-    if multinode is not None:
-        robot_names = {robot.name for robot in scene.robots}
-        for node, names in multinode.distribution.items():
-            for j, name in enumerate(names):
-                if name not in robot_names:
-                    fail(("environment", "multinode", "distribution", node, j),
-                         f"multinode node {node!r} lists robot {name!r}, which is not in the scene")
+    if scene.environment.multinode is not None:
+        _check_multinode(scene.environment.multinode, [robot.name for robot in scene.robots], fail)
+
+
+def _check_multinode(multinode, robot_names: list[str], fail) -> None:
+    """configure_multinode: the socket protocol, and every robot of the scene on exactly one node."""
+    where = ("environment", "multinode")
+    if multinode.protocol == "hla":
+        fail(where + ("protocol",), "protocol 'hla' needs an HLA run-time infrastructure (CERTI with PyHLA), which "
+             "cannot be installed here; use protocol 'socket' (the default) with `morsec multinode-server`")
+    owner: dict[str, str] = {}
+    for node, names in multinode.distribution.items():
+        for j, name in enumerate(names):
+            if name not in robot_names:
+                fail(where + ("distribution", node, j),
+                     f"multinode node {node!r} lists robot {name!r}, which is not in the scene")
+            if name in owner:
+                fail(where + ("distribution", node, j), f"robot {name!r} is on two nodes, {owner[name]!r} and "
+                     f"{node!r}: each robot is simulated by one node")
+            owner[name] = node
+    unassigned = [name for name in robot_names if name not in owner]
+    if unassigned:
+        nodes = ", ".join(multinode.distribution) or "none yet"
+        several = len(unassigned) > 1
+        fail(where + ("distribution",), f"robot{'s' if several else ''} {', '.join(map(repr, unassigned))} "
+             f"{'are' if several else 'is'} on no node: list each robot under the node that simulates it "
+             f"(nodes: {nodes})")
 
 
 def _resolve_children(components: list, parent_path: tuple, default_interface: str | None, cat: Catalogue, fail,

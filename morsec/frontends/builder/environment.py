@@ -224,8 +224,9 @@ class Environment(AbstractComponent):
 
     def configure_multinode(self, protocol="socket", server_address="localhost", server_port="65000",
                             distribution=None):
+        port = _plain(server_port)  # MORSE's default is the string '65000'
         entry: dict[str, Any] = {"protocol": protocol, "server_address": server_address,
-                                 "server_port": _plain(server_port)}
+                                 "server_port": int(port) if isinstance(port, str) and port.isdigit() else port}
         if distribution is not None:
             entry["distribution"] = {str(node): [r.name if isinstance(r, AbstractComponent) else r for r in robots]
                                      for node, robots in dict(distribution).items()}
@@ -298,7 +299,7 @@ class Environment(AbstractComponent):
         """End of the script: names are final. Run by `python script.py`, builds (or runs) the scene."""
         if name is not None:
             self._session.morse_only(None, "create", {"name": name},
-                                     "(name=) names the multinode node; recorded for the runtime")
+                                     "(name=) names the multinode node: use `morsec run --node NAME` (or $MORSE_NODE)")
         frame = self._session.caller_frame()
         if frame is not None:
             self._session.scan(frame)
