@@ -4,7 +4,7 @@ fixed_step (as fast as the machine allows) on the same build, three ways:
 - plain: no Foxglove server (the reference);
 - no client: `--foxglove`, nobody connected (target ratio <= 1.05: nothing is converted or sent while no
   client subscribes, the loop pays a clock read per frame and one has_sinks() per sensor tick);
-- one client: Foxglove's own client (`@foxglove/ws-protocol`, tests/foxglove/watch.mjs --count) connected and
+- one client: Foxglove's own client (`@foxglove/ws-protocol`, tests/node/watch.mjs --count) connected and
   subscribed to every channel before the run starts, counting what it receives (reported, no target: it
   is the price of every message converted and sent, and the client shares the machine's cores).
 
@@ -14,7 +14,7 @@ Hz) and `laser` (the same ATRV in the boxes room with a Sick laser at 10 Hz: Las
 
     python benchmarks/foxglove_loop.py [--scene reference|laser] [--duration 60] [--repeats 5]
 
-Needs node and tests/foxglove's packages (`npm ci --prefix tests/foxglove`) for the connected run.
+Needs node and the packages of tests/node (`npm ci --prefix tests/node`) for the connected run.
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ def run(build: Path, duration: float, foxglove: bool, client: bool) -> tuple[flo
             deadline = time.monotonic() + SUBSCRIBE_TIMEOUT
             while not (sim.foxglove.tf.has_sinks() and all(s.listening for s in sim.foxglove.streams)):
                 if time.monotonic() > deadline:
-                    raise SystemExit("Foxglove's client did not subscribe (npm ci --prefix tests/foxglove?)")
+                    raise SystemExit("Foxglove's client did not subscribe (npm ci --prefix tests/node?)")
                 time.sleep(0.05)
         start = time.perf_counter()
         sim.run(duration)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -40,3 +41,15 @@ def build_yaml(tmp_path):
         return build_scene(source, tmp_path / f"{name}.build")
 
     return build
+
+
+@pytest.fixture(scope="session")
+def node_packages(repo_root) -> Path:
+    """tests/node with Foxglove's JavaScript installed from its lock file (.ci/run does it first; a fresh
+    checkout gets it here): its WebSocket client and its MCAP reader."""
+    folder = repo_root / "tests" / "node"
+    if not (folder / "node_modules" / "@mcap" / "core").is_dir() or \
+            not (folder / "node_modules" / "@foxglove" / "ws-protocol").is_dir():
+        subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=folder, check=True, capture_output=True,
+                       timeout=300)
+    return folder

@@ -1,5 +1,5 @@
 """`morsec run --foxglove` (docs/foxglove.md), watched by Foxglove's own client: `@foxglove/ws-protocol` from
-npm, in a node script (tests/foxglove/watch.mjs) that speaks the subprotocol foxglove-sdk's server does,
+npm, in a node script (tests/node/watch.mjs) that speaks the subprotocol foxglove-sdk's server does,
 subscribes to every channel and decodes every message with its channel's schema, as the Foxglove app does.
 The example scene and its builder twin are served; a client drives the rover on its socket stream while
 Foxglove watches. Then the pieces on the Python side: the transform tree against MuJoCo's poses, the scene's
@@ -28,7 +28,7 @@ from runtime_helpers import HOST, Morsec, free_port, occupy
 from morsec.app.project import build_scene
 
 REPO = Path(__file__).resolve().parent.parent
-CLIENT_DIR = REPO / "tests" / "foxglove"
+CLIENT_DIR = REPO / "tests" / "node"
 WATCH = CLIENT_DIR / "watch.mjs"
 MESSAGE_SCHEMAS = REPO / "schemas" / "messages"
 EVENT_TIMEOUT = 60.0  # s: a scene with two cameras rendered on the CPU, on a loaded machine
@@ -47,11 +47,8 @@ CHANNELS = {
 
 
 @pytest.fixture(scope="session")
-def foxglove_client() -> Path:
-    """Foxglove's client installed from the lock file (.ci/run does it first; a fresh checkout too)."""
-    if not (CLIENT_DIR / "node_modules" / "@foxglove" / "ws-protocol").is_dir():
-        subprocess.run(["npm", "ci", "--no-audit", "--no-fund"], cwd=CLIENT_DIR, check=True, capture_output=True,
-                       timeout=300)
+def foxglove_client(node_packages) -> Path:
+    """Foxglove's client (tests/node/watch.mjs), its packages installed."""
     return WATCH
 
 

@@ -396,7 +396,8 @@ def test_a_static_tf_stream_records_where_the_component_is_on_its_robot(tmp_path
 def test_nav_pr2_serves_the_navigation_topics(simulate, tmp_path):
     """MORSE's NavPR2 with add_interface('ros'): its laser on /scan (181 rays, -90 to +90 degrees, 30 m), its
     odometry on /odom, a Twist on /cmd_vel moving it holonomically, as ROS's navigation stack expects; the
-    laser measures a wall 3 m ahead coming closer; BasePR2's /joint_states beside them."""
+    laser measures a wall 10 m ahead coming closer (far and wide enough for the robot never to reach it, however
+    long `rostopic pub -1`'s three seconds of latching take under load); BasePR2's /joint_states beside them."""
     import math
     source = tmp_path / "nav_pr2.py"
     source.write_text(textwrap.dedent("""
@@ -404,14 +405,14 @@ def test_nav_pr2_serves_the_navigation_topics(simulate, tmp_path):
         pr2 = NavPR2(with_keyboard=False)
         pr2.add_interface('ros')
         wall = Cube('wall')
-        wall.scale = (0.1, 2.0, 1.0)
-        wall.translate(x=3.0, z=1.0)
+        wall.scale = (0.1, 10.0, 1.0)
+        wall.translate(x=10.0, z=1.0)
         env = Environment('empty')
     """), encoding="utf-8")
     simulate(source)
 
     scan = echo("/scan")[0]
-    ahead = 3.0 - 0.1 - 0.275  # the wall's near face, from the laser 0.275 m ahead of the robot's origin
+    ahead = 10.0 - 0.1 - 0.275  # the wall's near face, from the laser 0.275 m ahead of the robot's origin
     assert len(scan["ranges"]) == 181 and scan["range_max"] == pytest.approx(30.0)
     assert (scan["angle_min"], scan["angle_increment"]) == (pytest.approx(-math.pi / 2), pytest.approx(math.pi / 180))
     assert scan["ranges"][90] == pytest.approx(ahead, abs=0.01) and scan["ranges"][0] == pytest.approx(30.0)
