@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 from collections import deque
 
 from morsec.component.services import FAILED, Request, RequestHandler
@@ -18,10 +19,11 @@ MAX_ID = 80
 
 
 def format_response(request_id: str, status: str, result) -> bytes:
-    line = f"{request_id} {status}"
-    if result:  # MORSE leaves out falsy results (None, False, 0, [], "")
-        line += " " + json.dumps(result, default=_plain)
-    return (line + "\n").encode("utf-8")
+    if not result:  # MORSE leaves out falsy results (None, False, 0, [], "")
+        return f"{request_id} {status}\n".encode("utf-8")
+    if type(result) is float and math.isfinite(result):  # `time now`: JSON writes a finite float as repr does
+        return f"{request_id} {status} {result!r}\n".encode("utf-8")
+    return f"{request_id} {status} {json.dumps(result, default=_plain)}\n".encode("utf-8")
 
 
 class ServiceServer(Server):
