@@ -101,6 +101,12 @@ class RequestManager:
         exposed = self.exposed.get(name)
         return sorted(exposed.services) if exposed else []
 
+    def anytime(self, component: str, service: str) -> bool:
+        """Whether the service may be answered while a frame's physics runs (ServiceInfo.anytime)."""
+        exposed = self.exposed.get(component)
+        info = exposed.services.get(service) if exposed else None
+        return info is not None and info.anytime
+
     def is_running(self, request: Request) -> bool:
         return request in self.running.get(request.component, ())
 

@@ -777,7 +777,7 @@ class Simulation:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
         if self.dynamics:
-            mujoco.mj_step(m, d, nstep=self.substeps)
+            self._physics(m, d)
             self.stability.check(m, d)
         else:
             d.qvel[:] = 0.0
@@ -806,6 +806,22 @@ class Simulation:
             now = self.clock.now()
             for comp in due:
                 self._tick_sensor(comp, now)
+
+    def _physics(self, m, d) -> None:
+        """The frame's physics sub-steps, in one call; while a client converses (a request within CONVERSATION),
+        one at a time, the service connections read after each and the requests of `anytime` services
+        (`time now`: they read and change nothing a frame changes, ServiceInfo.anytime) answered there: a frame
+        run back to back with the next (fixed_step) no longer holds such an answer until its end. The others
+        wait for the frame's end, as always. The same steps in the same order: the same physics, bit for bit
+        (mj_step's nstep repeats mj_step)."""
+        if time.perf_counter() - self.requests.last_request >= CONVERSATION:
+            mujoco.mj_step(m, d, nstep=self.substeps)
+            return
+        middlewares = self.middlewares.values()
+        for _ in range(self.substeps):
+            mujoco.mj_step(m, d)
+            for mw in middlewares:
+                mw.answer_anytime()
 
     def _flush(self) -> None:
         for mw in self.middlewares.values():
