@@ -1,6 +1,7 @@
 """The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
 
-Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps -> sensors
+Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps (between
+which, while a client converses, `anytime` requests are answered: `_physics`) -> sensors
 due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any. A node
 of a multinode world exchanges with its server first (runtime.multinode, the one hook at `frame`'s start)."""
 
