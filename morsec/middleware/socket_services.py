@@ -37,6 +37,10 @@ class ServiceServer(Server):
     Between two physics sub-steps of a frame (`answer_anytime`) only the clients are read, and only the
     requests of `anytime` services answered (see there)."""
 
+    # a client's bytes are acknowledged by the answers they bring at once, else explicitly
+    # (`_serve_and_acknowledge`): a quick-ack per read would send a packet of its own before each answer
+    acknowledges = False
+
     def __init__(self, poller: Poller, requests: RequestHandler, host: str, port: int, attempts: int):
         super().__init__(poller, host, port, attempts)
         self.requests = requests
@@ -48,10 +52,6 @@ class ServiceServer(Server):
 
     def accepted(self, conn: Connection) -> None:
         self.talkers.register(conn.sock, selectors.EVENT_READ, conn)
-
-    # a client's bytes are acknowledged by the answers they bring at once, else explicitly (`_acknowledge`): a
-    # quick-ack per read would send a packet of its own before each answer
-    acknowledges = False
 
     def _readable(self, conn: Connection) -> None:
         if len(self.waiting.get(conn, ())) >= MAX_REQUESTS_PER_POLL:
@@ -85,6 +85,8 @@ class ServiceServer(Server):
 
     def _anytime(self, raw: bytes) -> bool:
         tokens = _tokens(raw)
+        if not tokens:  # a blank line: skipped, wherever
+            return True
         return len(tokens) >= 3 and len(raw) <= MAX_REQUEST_LINE and self.requests.anytime(tokens[1], tokens[2])
 
     def received(self, conn: Connection, data: bytes) -> None:
