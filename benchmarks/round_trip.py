@@ -18,9 +18,15 @@ same machine load at the same moments; each side's figure is the mean of its cal
 process preempted by another's work, which load brings, costs either side a scheduler's time slice: that is
 the machine's, not the design's), its median beside it.
 
-Flat out stays the dearest case: the loop never waits, so it holds a core of its own, and what it does
-after the physics (sensors, messages, the clock) delays a request that arrives then (on a quiet machine:
-median 31 us, about 1.9 x the echo's, where best_effort answers in 21 us).
+Where the time goes (2 cores, medians): the echo answers in 16 us (two loopback hops, two Python processes
+reading and writing a line); best_effort in 21 us (the request parsed, dispatched, its listeners told, the
+answer written: about 5 us more). Flat out, each trip used to wait for the frame running when its request
+arrived (0.14 ms, 7 to 18 x the echo); now it waits for the sub-step running (12 us each, 6 on average), and
+a request that arrives after the physics (about 1 in 9: the sensors tick, the messages leave, the loop
+polls at the next frame's start) waits 20 to 40 us: median 31 us, a mean of about 1.9 x the echo's, the
+dearest case and the closest to the target. A thread answering while `mj_step` runs (it releases the GIL)
+would not answer sooner after the physics (the loop holds the GIL there), and would cost a lock around
+every step and GIL hand-offs: not taken.
 
     python benchmarks/round_trip.py [--calls 2000]
 """

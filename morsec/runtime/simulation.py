@@ -814,8 +814,9 @@ class Simulation:
         (`time now`: they read and change nothing a frame changes, ServiceInfo.anytime) answered there: a frame
         run back to back with the next (fixed_step) no longer holds such an answer until its end. The others
         wait for the frame's end, as always. The same steps in the same order: the same physics, bit for bit
-        (mj_step's nstep repeats mj_step)."""
-        if time.perf_counter() - self.requests.last_request >= CONVERSATION:
+        (mj_step's nstep repeats mj_step). Not in the first frame: its start is time 0 with relative time,
+        which MORSE's answer cannot carry (a falsy result is left out: pymorse's `sim.time()` would be None)."""
+        if time.perf_counter() - self.requests.last_request >= CONVERSATION or not self.clock.frames:
             mujoco.mj_step(m, d, nstep=self.substeps)
             return
         middlewares = self.middlewares.values()
