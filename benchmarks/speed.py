@@ -10,7 +10,7 @@ figure, its anchor's, their ratio, the target and whether it is met.
   `selectors` echo server: round_trip.py's rows.
 
 Each row's method is its script's (see their docstrings). --quick runs shorter and fewer repeats, and leaves
-out the fleet's instruction count (about 12 minutes of valgrind): its wall-time ratios are rougher, its other
+out the fleet's instruction count (about 5 minutes more of valgrind): its wall-time ratios are rougher, its other
 instruction counts as good.
 
     python benchmarks/speed.py [--quick]
@@ -58,7 +58,7 @@ class Plan:
 
 FULL = Plan({"reference": 20.0, "sensors": 10.0, "fleet": 3.0}, 5, {"reference": 2.0, "sensors": 1.0, "fleet": 0.1},
             7, 5.0, 2000)
-# without the fleet's instructions: its two sides take about 12 minutes of valgrind (128 robots' start-up, twice)
+# without the fleet's instructions: about 5 minutes more of valgrind (128 robots' start-up, twice a side)
 QUICK = Plan({"reference": 5.0, "sensors": 3.0, "fleet": 1.0}, 3, {"reference": 0.5, "sensors": 0.5}, 3, 2.0, 500)
 
 
