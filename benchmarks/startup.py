@@ -29,6 +29,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -53,7 +54,7 @@ def child_env(tmp: Path) -> dict[str, str]:
     return env
 
 
-def measure(cmd: list[str], env: dict[str, str], cwd: Path) -> tuple[float, float]:
+def measure_one(cmd: list[str], env: dict[str, str], cwd: Path) -> tuple[float, float]:
     """(CPU seconds, peak resident MiB) of one run of `cmd`, which must succeed."""
     proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     _, status, usage = os.wait4(proc.pid, 0)
@@ -71,7 +72,7 @@ def best(pairs: list[tuple[list[str], list[str]]], env, cwd, repeats: int, befor
             for j, cmd in enumerate(sides):
                 if before:
                     before(cmd)
-                cpu, rss = measure(cmd, env, cwd)
+                cpu, rss = measure_one(cmd, env, cwd)
                 old = results[i][j]
                 results[i][j] = (min(old[0], cpu), min(old[1], rss))
     return results
@@ -94,70 +95,103 @@ def row(what: str, ours: float, anchor: str, theirs: float, target: str, ok: boo
           f"target {target:<14} {'OK' if ok else 'ABOVE TARGET'}")
 
 
+@dataclass
+class Figures:
+    """CPU seconds and peak MiB (best of the runs) of each row's two sides, as `measure` returns them."""
+
+    start: tuple[float, float]  # morsec run BUILD to SCENE INITIALIZED
+    load: tuple[float, float]  # import mujoco + load scene.xml, the start's anchor
+    cold: tuple[float, float]  # morsec build into a new folder
+    cold_anchor: tuple[float, float]
+    again: tuple[float, float]  # morsec build into the folder built already
+    again_anchor: tuple[float, float]
+    memory: tuple[float, float]  # morsec run for `seconds`
+    bare_step: tuple[float, float]  # load + as many mj_step bare
+    frames: int
+    commands: dict[str, list[str]]  # each side's command line, for --callgrind
+    env: dict[str, str]
+    cwd: Path
+
+
+def measure(tmp: Path, repeats: int, seconds: float) -> Figures:
+    """Every row's two sides, run alternately `repeats` times in the scratch folder `tmp`. The peak memory of a
+    child counts the process it was forked from (Linux's ru_maxrss keeps the size before exec): measure from
+    a process that imported little (startup.py, not one that ran simulations: speed.py runs this script)."""
+    py = sys.executable
+    env = child_env(tmp)
+    (tmp / "scene.yaml").write_text(SCENE)
+    build = tmp / "build"
+    morsec = [py, "-m", "morsec"]
+    subprocess.run([*morsec, "build", "scene.yaml", "-o", str(build)], env=env, cwd=tmp, check=True,
+                   capture_output=True)
+    xml = str(build / "scene.xml")
+    manifest = json.loads((build / "manifest.json").read_text())
+    frequency, substeps = manifest["loop"]["frequency"], manifest["loop"]["physics_substeps"]
+    frames = round(seconds * frequency)
+    run = [*morsec, "run", str(build), "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0"]
+    commands = {
+        "start": [*run, "--duration", f"{1.0 / frequency:.9f}"],
+        "load": [py, "-c", BARE_LOAD, xml],
+        "build_cold": [*morsec, "build", "scene.yaml", "-o", str(tmp / "cold")],
+        "build_again": [*morsec, "build", "scene.yaml", "-o", str(build)],
+        "memory": [*run, "--duration", f"{seconds:g}"],
+        "bare_step": [py, "-c", BARE_STEP, xml, str(frames), str(substeps)],
+    }
+    cold_dir = str(tmp / "cold")
+
+    def fresh_build(cmd):  # a cold build writes into a folder built never before
+        if cmd[-1] == cold_dir:
+            shutil.rmtree(cold_dir, ignore_errors=True)
+
+    for cmd in commands.values():  # warm-up: bytecode caches
+        fresh_build(cmd)
+        measure_one(cmd, env, tmp)
+    c = commands
+    (start, load), (cold, cold_anchor), (again, again_anchor), (memory, bare_step) = best(
+        [(c["start"], c["load"]), (c["build_cold"], c["load"]), (c["build_again"], c["load"]),
+         (c["memory"], c["bare_step"])], env, tmp, repeats, before=fresh_build)
+    return Figures(start, load, cold, cold_anchor, again, again_anchor, memory, bare_step, frames, commands, env,
+                   tmp)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, default=7, help="runs of each side; the best is kept")
     parser.add_argument("--seconds", type=float, default=5.0, help="simulated seconds of the memory row")
     parser.add_argument("--callgrind", action="store_true", help="also count instructions (valgrind)")
+    parser.add_argument("--json", action="store_true", help="print the figures as JSON (for speed.py)")
     args = parser.parse_args(argv)
 
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)
-        env = child_env(tmp)
-        (tmp / "scene.yaml").write_text(SCENE)
-        build = tmp / "build"
-        morsec = [py, "-m", "morsec"]
-        subprocess.run([*morsec, "build", "scene.yaml", "-o", str(build)], env=env, cwd=tmp, check=True,
-                       capture_output=True)
-        xml = str(build / "scene.xml")
-        manifest = json.loads((build / "manifest.json").read_text())
-        frequency, substeps = manifest["loop"]["frequency"], manifest["loop"]["physics_substeps"]
-        frames = round(args.seconds * frequency)
-        run = [*morsec, "run", str(build), "--time-strategy", "fixed_step", "--port-base", "0",
-               "--service-port", "0"]
-        start = [*run, "--duration", f"{1.0 / frequency:.9f}"]
-        load = [py, "-c", BARE_LOAD, xml]
-        cold_dir = tmp / "cold"
-
-        def fresh_build(cmd):  # a cold build writes into a folder built never before
-            if cmd[-1] == str(cold_dir):
-                shutil.rmtree(cold_dir, ignore_errors=True)
-
-        build_cold = [*morsec, "build", "scene.yaml", "-o", str(cold_dir)]
-        build_again = [*morsec, "build", "scene.yaml", "-o", str(build)]
-        memory = [*run, "--duration", f"{args.seconds:g}"]
-        bare_step = [py, "-c", BARE_STEP, xml, str(frames), str(substeps)]
-
-        for cmd in (start, load, build_cold, build_again, memory, bare_step):  # warm-up: bytecode caches
-            fresh_build(cmd)
-            measure(cmd, env, tmp)
-        (run_start, run_anchor), (cold, cold_anchor), (again, again_anchor), (mem, mem_anchor) = best(
-            [(start, load), (build_cold, load), (build_again, load), (memory, bare_step)], env, tmp, args.repeats,
-            before=fresh_build)
-
+        f = measure(tmp, args.repeats, args.seconds)
+        if args.json:
+            print(json.dumps({name: value for name, value in vars(f).items() if isinstance(value, (tuple, int))}))
+            return 0
         mujoco_version = subprocess.run([py, "-c", "import mujoco; print(mujoco.__version__)"], capture_output=True,
                                         text=True).stdout.strip()
         print(f"CPU seconds (user + sys), best of {args.repeats}; Python {sys.version.split()[0]}, "
               f"MuJoCo {mujoco_version}")
-        row("morsec run BUILD to SCENE INIT.", run_start[0], "import mujoco + load scene.xml", run_anchor[0],
-            "<= 1.3", run_start[0] / run_anchor[0] <= 1.3)
-        row("morsec build, cold", cold[0], "import mujoco + load scene.xml", cold_anchor[0], "<= 1 s",
-            cold[0] <= 1.0)
-        row("morsec build, unchanged", again[0], "import mujoco + load scene.xml", again_anchor[0], "<= 0.3 s",
-            again[0] <= 0.3)
-        row(f"peak memory, run {args.seconds:g} s", mem[1], f"load + {frames} x mj_step bare", mem_anchor[1],
-            "<= 1.3", mem[1] / mem_anchor[1] <= 1.3, unit="MiB")
+        row("morsec run BUILD to SCENE INIT.", f.start[0], "import mujoco + load scene.xml", f.load[0],
+            "<= 1.3", f.start[0] / f.load[0] <= 1.3)
+        row("morsec build, cold", f.cold[0], "import mujoco + load scene.xml", f.cold_anchor[0], "<= 1 s",
+            f.cold[0] <= 1.0)
+        row("morsec build, unchanged", f.again[0], "import mujoco + load scene.xml", f.again_anchor[0], "<= 0.3 s",
+            f.again[0] <= 0.3)
+        row(f"peak memory, run {args.seconds:g} s", f.memory[1], f"load + {f.frames} x mj_step bare",
+            f.bare_step[1], "<= 1.3", f.memory[1] / f.bare_step[1] <= 1.3, unit="MiB")
 
         if args.callgrind:
+            c, env = f.commands, f.env
             print("instructions (callgrind), one run of each side:")
-            for what, ours, theirs in (("morsec run BUILD to SCENE INIT.", start, load),
-                                       ("morsec build, unchanged", build_again, load)):
+            for what, ours, theirs in (("morsec run BUILD to SCENE INIT.", c["start"], c["load"]),
+                                       ("morsec build, unchanged", c["build_again"], c["load"])):
                 a, b = instructions(ours, env, tmp), instructions(theirs, env, tmp)
                 print(f"{what:<34} {a / 1e6:9.1f} M | import mujoco + load scene.xml {b / 1e6:9.1f} M | "
                       f"ratio {a / b:5.2f}")
-            fresh_build(build_cold)
-            a, b = instructions(build_cold, env, tmp), instructions(load, env, tmp)
+            shutil.rmtree(tmp / "cold", ignore_errors=True)
+            a, b = instructions(c["build_cold"], env, tmp), instructions(c["load"], env, tmp)
             print(f"{'morsec build, cold':<34} {a / 1e6:9.1f} M | import mujoco + load scene.xml {b / 1e6:9.1f} M | "
                   f"ratio {a / b:5.2f}")
     return 0

@@ -616,8 +616,9 @@ class Morse:
         return self.rpc("time", "sleep", seconds)
 
     def time(self) -> float:
-        """The simulated time, seconds since the epoch (`time now`)."""
-        return self.rpc("time", "now")
+        """The simulated time, seconds since the epoch (`time now`); 0.0 at the start of a relative-time run,
+        whose answer, as MORSE's, leaves the falsy result out."""
+        return self.rpc("time", "now") or 0.0
 
     def reset(self) -> Any:
         return self.rpc("simulation", "reset_objects")

@@ -25,6 +25,7 @@ class RequestHandler(Protocol):
     """What a middleware hands requests to (the runtime's RequestManager)."""
 
     def handle(self, request: Request) -> None: ...
+    def anytime(self, component: str, service: str) -> bool: ...
     def cancel(self, client: Any, request_id: str) -> None: ...
     def drop_client(self, client: Any) -> None: ...
 
@@ -34,12 +35,15 @@ class ServiceInfo:
     name: str
     asynchronous: bool
     interruptible: bool | None  # None: no policy, a second call fails
+    anytime: bool = False  # may be answered while a frame's physics runs (see `service`)
 
 
-def service(fn: Callable | None = None, *, name: str | None = None):
-    """A synchronous service: its return value is the answer."""
+def service(fn: Callable | None = None, *, name: str | None = None, anytime: bool = False):
+    """A synchronous service: its return value is the answer. `anytime`: it reads nothing a frame changes
+    (MjData, the components' data) and changes nothing, so it may be answered between two physics
+    sub-steps of a frame (`time now`, `simulation list_robots`), not only between frames."""
     def mark(f):
-        f._morsec_service = ServiceInfo(name or f.__name__, False, None)
+        f._morsec_service = ServiceInfo(name or f.__name__, False, None, anytime)
         return f
     return mark(fn) if fn else mark
 

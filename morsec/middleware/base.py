@@ -140,6 +140,10 @@ class Middleware:
     def flush(self) -> None:
         """Send what is queued (called every frame)."""
 
+    def answer_anytime(self) -> None:
+        """Between two physics sub-steps of a frame, while a client converses: answer the requests that
+        `anytime` services may answer mid-frame (ServiceInfo.anytime), on the loop's thread; nothing else."""
+
     def describe(self) -> list[tuple[str, str, str]]:
         """(what, direction, where) per endpoint, for the table printed at SCENE INITIALIZED."""
         return []

@@ -90,13 +90,15 @@ class Connection:
         self.inbuf = b""
         self.outbuf = bytearray()  # appended to and consumed in place: no quadratic copying
         self.closed = False
+        self.sent = 0  # messages sent (or queued to be)
 
     def fileno(self) -> int:
         return self.sock.fileno()
 
-    def receive(self) -> bytes | None:
+    def receive(self, acknowledge: bool = True) -> bytes | None:
         """New bytes (at most about READ_LIMIT; the rest waits for the next poll), b'' when nothing is
-        there, None when the peer closed or failed."""
+        there, None when the peer closed or failed. `acknowledge`: at once, per read (else the caller
+        does, when no answer of its own carries the acknowledgement)."""
         chunks: list[bytes] = []
         size = 0
         while size < READ_LIMIT:
@@ -110,7 +112,8 @@ class Connection:
                 return None if not chunks else b"".join(chunks)
             chunks.append(data)
             size += len(data)
-            self.acknowledge()
+            if acknowledge:
+                self.acknowledge()
             if len(data) < READ_CHUNK:
                 break
         return b"".join(chunks)
@@ -130,6 +133,7 @@ class Connection:
         if droppable and len(self.outbuf) > self.MAX_PENDING:
             return True
         self.outbuf += data
+        self.sent += 1
         return self.flush()
 
     def flush(self) -> bool:
@@ -156,6 +160,8 @@ class Server:
     """A listening socket and its clients, all polled by the same Poller. Subclasses say what a client's
     bytes mean (`received`) and what leaving means (`dropped`)."""
 
+    acknowledges = True  # what a client sends is acknowledged per read (False: `received` sees to it)
+
     def __init__(self, poller: Poller, host: str, port: int, attempts: int = 1):
         self.poller = poller
         self.server = listen(host, port, attempts)
@@ -175,7 +181,7 @@ class Server:
             self.accepted(conn)
 
     def _readable(self, conn: Connection) -> None:
-        data = conn.receive()
+        data = conn.receive(self.acknowledges)
         if data is None:
             self.drop(conn)
         else:

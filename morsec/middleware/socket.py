@@ -88,6 +88,10 @@ class Socket(Middleware):
         if self.server is not None:
             self.server.flush()
 
+    def answer_anytime(self) -> None:
+        if self.server is not None:
+            self.server.answer_anytime()
+
     def describe(self) -> list[tuple[str, str, str]]:
         bind = self.context.bind
         rows = []
@@ -120,17 +124,17 @@ class StreamPorts:
     def __init__(self, socket: Socket):
         self.socket = socket
 
-    @service
+    @service(anytime=True)
     def list_streams(self) -> list[str]:
         return sorted(self.socket.ports())
 
-    @service
+    @service(anytime=True)
     def get_stream_port(self, name: str) -> int:
         ports = self.socket.ports()
         if name not in ports:
             raise ValueError(f"Stream unavailable for component {name}")
         return ports[name]
 
-    @service
+    @service(anytime=True)
     def get_all_stream_ports(self) -> dict:
         return self.socket.ports()

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 import logging
+import math
+import selectors
 from collections import deque
 
 from morsec.component.services import FAILED, Request, RequestHandler
@@ -18,10 +20,11 @@ MAX_ID = 80
 
 
 def format_response(request_id: str, status: str, result) -> bytes:
-    line = f"{request_id} {status}"
-    if result:  # MORSE leaves out falsy results (None, False, 0, [], "")
-        line += " " + json.dumps(result, default=_plain)
-    return (line + "\n").encode("utf-8")
+    if not result:  # MORSE leaves out falsy results (None, False, 0, [], "")
+        return f"{request_id} {status}\n".encode()
+    if type(result) is float and math.isfinite(result):  # `time now`: JSON writes a finite float as repr does
+        return f"{request_id} {status} {result!r}\n".encode()
+    return f"{request_id} {status} {json.dumps(result, default=_plain)}\n".encode()
 
 
 class ServiceServer(Server):
@@ -29,13 +32,26 @@ class ServiceServer(Server):
     and poll: a client that pipelines thousands of requests gets them answered in turn without delaying
     the others, and is not read from while that many are waiting (what it sends meanwhile waits in the
     kernel, and TCP slows it down). Answers wait in the client's output buffer; past MAX_QUEUED_ANSWERS
-    bytes the client, which is not reading them, is dropped."""
+    bytes the client, which is not reading them, is dropped.
+
+    Between two physics sub-steps of a frame (`answer_anytime`) only the clients are read, and only the
+    requests of `anytime` services answered (see there)."""
+
+    # a client's bytes are acknowledged by the answers they bring at once, else explicitly
+    # (`_serve_and_acknowledge`): a quick-ack per read would send a packet of its own before each answer
+    acknowledges = False
 
     def __init__(self, poller: Poller, requests: RequestHandler, host: str, port: int, attempts: int):
         super().__init__(poller, host, port, attempts)
         self.requests = requests
         self.discarding: set[Connection] = set()
         self.waiting: dict[Connection, deque[bytes]] = {}  # request lines not served yet
+        self.talkers = selectors.DefaultSelector()  # the clients alone, for answer_anytime
+        self.mid_frame = False  # in answer_anytime: a frame's physics is running
+        self.leaving: set[Connection] = set()  # clients to drop at the frame's end (their answer failed mid-frame)
+
+    def accepted(self, conn: Connection) -> None:
+        self.talkers.register(conn.sock, selectors.EVENT_READ, conn)
 
     def _readable(self, conn: Connection) -> None:
         if len(self.waiting.get(conn, ())) >= MAX_REQUESTS_PER_POLL:
@@ -43,7 +59,52 @@ class ServiceServer(Server):
         else:
             super()._readable(conn)
 
+    def answer_anytime(self) -> None:
+        """Called between two physics sub-steps of a frame, on the loop's thread: read the clients that wrote,
+        and answer the requests at the head of each one's queue whose service is `anytime` (it reads and
+        changes nothing a frame changes: `time now`). The first other request waits for the frame's end
+        (`flush`, the next poll), and so do those its client sent after it: each client's requests are
+        still answered in their order. Nothing else happens here: no client is accepted, and one that left
+        is dropped at the frame's end (its end of file stays readable)."""
+        self.mid_frame = True
+        try:
+            for key, _ in self.talkers.select(0):
+                conn = key.data
+                lines = self.waiting.get(conn)
+                if conn.closed or (lines and not self._anytime(lines[0])):
+                    continue  # its next request waits for the frame's end: so does all it sends after it
+                if lines is None or len(lines) < MAX_REQUESTS_PER_POLL:
+                    data = conn.receive(acknowledge=False)
+                    if not data:  # nothing after all, or the client left: the frame's end sees to it
+                        continue
+                    self.poller.polls += 1  # what arrived here arrived together (TimeServices counts round trips)
+                    self._take(conn, data)
+                self._serve_and_acknowledge(conn, anytime=True)
+        finally:
+            self.mid_frame = False
+
+    def _anytime(self, raw: bytes) -> bool:
+        tokens = _tokens(raw)
+        if not tokens:  # a blank line: skipped, wherever
+            return True
+        return len(tokens) >= 3 and len(raw) <= MAX_REQUEST_LINE and self.requests.anytime(tokens[1], tokens[2])
+
     def received(self, conn: Connection, data: bytes) -> None:
+        self._take(conn, data)
+        self._serve_and_acknowledge(conn)
+
+    def _serve_and_acknowledge(self, conn: Connection, anytime: bool = False) -> None:
+        """Serve what a client sent, then acknowledge it at once unless an answer went out meanwhile (it
+        carries the acknowledgement): a client writing two requests in a row without waiting for an answer
+        (pymorse: `rotate(...)` from its thread pool, then `sleep(1)`) has its second one held by Nagle's
+        algorithm until the first is acknowledged, and a delayed acknowledgement takes 40 ms."""
+        sent = conn.sent
+        self._serve(conn, anytime)
+        if conn.sent == sent and not conn.closed:
+            conn.acknowledge()
+
+    def _take(self, conn: Connection, data: bytes) -> None:
+        """The complete lines of what arrived join the client's queue."""
         conn.inbuf += data
         *lines, conn.inbuf = conn.inbuf.split(b"\n")  # one pass, however many lines arrived
         if lines and conn in self.discarding:  # the end of a line refused already as too long
@@ -56,13 +117,15 @@ class ServiceServer(Server):
                 self.waiting.setdefault(conn, deque()).append(conn.inbuf[:MAX_REQUEST_LINE + 1])
             self.discarding.add(conn)
             conn.inbuf = b""
-        self._serve(conn)
 
-    def _serve(self, conn: Connection) -> None:
+    def _serve(self, conn: Connection, anytime: bool = False) -> None:
+        """Serve the client's waiting lines in order (`anytime`: up to the first that is not such a request)."""
         lines = self.waiting.get(conn)
         if lines is None:
             return
         for _ in range(min(len(lines), MAX_REQUESTS_PER_POLL)):
+            if anytime and not self._anytime(lines[0]):
+                return
             line = lines.popleft()
             if len(line) > MAX_REQUEST_LINE:  # refused whether it came in one read or in many
                 request_id = _first_token(line)
@@ -76,10 +139,9 @@ class ServiceServer(Server):
             del self.waiting[conn]
 
     def _request(self, conn: Connection, raw: bytes) -> None:
-        text = raw.decode("utf-8", errors="replace").strip()
-        if not text:
+        tokens = _tokens(raw)
+        if not tokens:
             return
-        tokens = text.split(None, 3)
         request_id = tokens[0][:MAX_ID]
         if len(tokens) == 2 and tokens[1] == "cancel":
             self.requests.cancel(conn, request_id)
@@ -109,14 +171,24 @@ class ServiceServer(Server):
         except (TypeError, ValueError) as err:
             line = format_response(request_id, FAILED, f"result cannot be serialised: {err}")
         if not conn.send(line):
-            self.drop(conn)
+            self._drop_soon(conn)
         elif len(conn.outbuf) > MAX_QUEUED_ANSWERS:
             log.warning("dropped a service client that does not read its answers (more than %d bytes waiting)",
                         MAX_QUEUED_ANSWERS)
+            self._drop_soon(conn)
+
+    def _drop_soon(self, conn: Connection) -> None:
+        """Drop a client now, or at the frame's end when a frame's physics is running (answer_anytime)."""
+        if self.mid_frame:
+            conn.closed = True  # nothing more is sent to it, nor served
+            self.leaving.add(conn)
+        else:
             self.drop(conn)
 
     def flush(self) -> None:
         """Serve the request lines that wait (a share of each client's), then send the answers that wait."""
+        while self.leaving:
+            self.drop(self.leaving.pop())
         for conn in list(self.waiting):
             self._serve(conn)
         self._send_answers()
@@ -127,6 +199,11 @@ class ServiceServer(Server):
                 self.drop(conn)
 
     def dropped(self, conn: Connection) -> None:
+        try:
+            self.talkers.unregister(conn.sock)  # closed already: found by its object
+        except (KeyError, ValueError):
+            pass
+        self.leaving.discard(conn)
         self.requests.drop_client(conn)
         self.discarding.discard(conn)
         self.waiting.pop(conn, None)
@@ -134,6 +211,12 @@ class ServiceServer(Server):
     def close(self) -> None:
         self._send_answers()
         super().close()
+        self.talkers.close()
+
+
+def _tokens(raw: bytes) -> list[str]:
+    """A request line's `id component service [json array]`, as split for handling."""
+    return raw.decode("utf-8", errors="replace").strip().split(None, 3)
 
 
 def _first_token(buf: bytes) -> str | None:

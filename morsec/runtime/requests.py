@@ -25,9 +25,44 @@ class Exposed:
     obj: Any
     services: dict[str, ServiceInfo] = field(default_factory=dict)
     owners: dict[str, Any] = field(default_factory=dict)  # services another object adds (a middleware's)
+    calls: dict[str, Call] = field(default_factory=dict)  # service -> its method, looked up once (see `call`)
 
     def owner(self, service: str) -> Any:
         return self.owners.get(service, self.obj)
+
+    def call(self, service: str, info: ServiceInfo) -> Call:
+        found = self.calls.get(service)
+        if found is None:
+            found = self.calls[service] = Call.of(getattr(self.owner(service), _attribute(self.owner(service), info)))
+        return found
+
+
+@dataclass(frozen=True)
+class Call:
+    """A service's bound method and how many positional arguments it takes: checking a request's count is
+    a comparison; inspect's binding, which costs more than the rest of a request, only words the refusal."""
+
+    method: Callable
+    signature: inspect.Signature
+    fewest: int
+    most: float  # inf: *args
+
+    @classmethod
+    def of(cls, method: Callable) -> Call:
+        signature = inspect.signature(method)
+        fewest, most = 0, 0.0
+        for parameter in signature.parameters.values():
+            if parameter.kind in (parameter.POSITIONAL_ONLY, parameter.POSITIONAL_OR_KEYWORD):
+                most += 1
+                fewest += parameter.default is parameter.empty
+            elif parameter.kind is parameter.VAR_POSITIONAL:
+                most = float("inf")
+            elif parameter.kind is parameter.KEYWORD_ONLY and parameter.default is parameter.empty:
+                fewest, most = 1, 0.0  # no positional call binds: every request gets bind's refusal
+        return cls(method, signature, fewest, most)
+
+    def takes(self, args: list) -> bool:
+        return self.fewest <= len(args) <= self.most
 
 
 class RequestManager:
@@ -49,9 +84,6 @@ class RequestManager:
         self.frames: Callable[[], int] | None = None
         self.waiting: list[tuple[int, Request, Exposed, Any]] = []
         self.last_request = float("-inf")  # wall clock (perf_counter) of the last request handled
-        # (id(owner), attribute) -> (owner, the method's signature): inspect.signature costs more than the rest
-        # of a request, so once per method (the owner kept: its id stays its own)
-        self._signatures: dict[tuple[int, str], tuple[Any, inspect.Signature]] = {}
 
     def expose(self, name: str, obj: Any, services: dict[str, ServiceInfo]) -> None:
         self.exposed[name] = Exposed(obj, dict(services))
@@ -63,10 +95,17 @@ class RequestManager:
         for service_name, info in services.items():
             exposed.services[service_name] = info
             exposed.owners[service_name] = obj
+            exposed.calls.pop(service_name, None)
 
     def service_names(self, name: str) -> list[str]:
         exposed = self.exposed.get(name)
         return sorted(exposed.services) if exposed else []
+
+    def anytime(self, component: str, service: str) -> bool:
+        """Whether the service may be answered while a frame's physics runs (ServiceInfo.anytime)."""
+        exposed = self.exposed.get(component)
+        info = exposed.services.get(service) if exposed else None
+        return info is not None and info.anytime
 
     def is_running(self, request: Request) -> bool:
         return request in self.running.get(request.component, ())
@@ -90,15 +129,11 @@ class RequestManager:
             request.reply(request.id, FAILED, f"The request {request.service!r} of component {request.component!r} "
                           "has not been registered in Socket service manager")
             return
-        owner = exposed.owner(request.service)
-        attribute = _attribute(owner, info)
-        method = getattr(owner, attribute)
-        known = self._signatures.get((id(owner), attribute))
-        if known is None or known[0] is not owner:
-            known = self._signatures[(id(owner), attribute)] = (owner, inspect.signature(method))
-        signature = known[1]
+        call = exposed.call(request.service, info)
+        method = call.method
         try:
-            signature.bind(*request.args)
+            if not call.takes(request.args):
+                call.signature.bind(*request.args)  # raises, in inspect's words
         except TypeError as err:
             if not request.args:  # MORSE's words (pymorse raises MorseServiceFailed, not TypeError)
                 request.reply(request.id, FAILED, f"Socket service manager: parameters expected for service "

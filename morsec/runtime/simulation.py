@@ -1,6 +1,7 @@
 """The simulation: one MjModel/MjData, the components of a build folder, their middlewares, the loop.
 
-Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps -> sensors
+Per frame: socket I/O (non-blocking, polled on this thread) -> actuators due -> physics sub-steps (between
+which, while a client converses, `anytime` requests are answered: `_physics`) -> sensors
 due (compute, modify, publish: sent) -> sleeps that ended (answers sent) -> the wall-clock wait, if any. A node
 of a multinode world exchanges with its server first (runtime.multinode, the one hook at `frame`'s start)."""
 
@@ -777,7 +778,7 @@ class Simulation:
             if comp.active and comp.schedule.due(t):
                 self._tick_actuator(comp)
         if self.dynamics:
-            mujoco.mj_step(m, d, nstep=self.substeps)
+            self._physics(m, d)
             self.stability.check(m, d)
         else:
             d.qvel[:] = 0.0
@@ -806,6 +807,23 @@ class Simulation:
             now = self.clock.now()
             for comp in due:
                 self._tick_sensor(comp, now)
+
+    def _physics(self, m, d) -> None:
+        """The frame's physics sub-steps, in one call; while a client converses (a request within CONVERSATION),
+        one at a time, the service connections read after each and the requests of `anytime` services
+        (`time now`: they read and change nothing a frame changes, ServiceInfo.anytime) answered there: a frame
+        run back to back with the next (fixed_step) no longer holds such an answer until its end. The others
+        wait for the frame's end, as always. The same steps in the same order: the same physics, bit for bit
+        (mj_step's nstep repeats mj_step). Not in the first frame: its start is time 0 with relative time,
+        which MORSE's answer cannot carry (a falsy result is left out: pymorse's `sim.time()` would be None)."""
+        if time.perf_counter() - self.requests.last_request >= CONVERSATION or not self.clock.frames:
+            mujoco.mj_step(m, d, nstep=self.substeps)
+            return
+        middlewares = self.middlewares.values()
+        for _ in range(self.substeps):
+            mujoco.mj_step(m, d)
+            for mw in middlewares:
+                mw.answer_anytime()
 
     def _flush(self) -> None:
         for mw in self.middlewares.values():

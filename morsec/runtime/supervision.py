@@ -34,11 +34,11 @@ class Supervision:
     def interrupt(self) -> None:
         pass
 
-    @service
+    @service(anytime=True)
     def list_robots(self) -> list[str]:
         return [r.name for r in self.sim.robots]
 
-    @service
+    @service(anytime=True)
     def details(self) -> dict:
         """The scene's structure, in the shape pymorse reads."""
         sim = self.sim
@@ -166,15 +166,15 @@ class TimeServices:
     def interrupt(self) -> None:
         pass
 
-    @service
+    @service(anytime=True)
     def now(self) -> float:
         return self.sim.clock.now()
 
-    @service
+    @service(anytime=True)
     def mode(self) -> str:
         return "Fixed Simulation Step" if self.sim.clock.strategy == "fixed_step" else "Best Effort"
 
-    @service
+    @service(anytime=True)
     def statistics(self) -> dict:
         hold = self.sim.hold
         return {**self.sim.clock.statistics(), "sleeping_requests": len(self.sleepers),
