@@ -23,6 +23,13 @@ also counts instructions (valgrind's callgrind, which machine load does not chan
 child process twice, for --callgrind-duration (2 simulated s; 0.25 for the fleet, whose frames cost 1e9
 instructions each) and for twice as long, and the difference is the instructions of that many frames
 (start-up cancels out), with one OpenBLAS thread (see callgrind_frames).
+
+Instructions per frame measured last (docs/running.md#performance): reference 1.24, sensors 1.33, fleet
+1.01. The first two stay above target: what is left is the Python each tick needs for MORSE's results
+(motion_vw's ground friction and trim, the ground-contact check, odometry, pose, the loop: ~180k
+instructions a frame for the reference scene, at ~70 instructions per bytecode on pyenv's CPython 3.11
+without PGO), plus the Sick's ray casting in the sensors scene; skipping sensors nobody reads would change
+what get_local_data, recordings and the noise modifiers' draws give.
 """
 
 from __future__ import annotations
