@@ -116,6 +116,9 @@ class Periodic:
         self.period = 1.0 / frequency
         self.tolerance = loop_dt / 2
         self.n = 0
+        # due at every frame, whatever n (due's test is then never true: the loop asks due only of the
+        # others). Exact for period == loop_dt: n * period is then a time the clock reached (frames * dt)
+        self.every_frame = self.period == loop_dt
 
     def due(self, t: float) -> bool:
         if t + self.tolerance < self.n * self.period:

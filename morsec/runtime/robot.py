@@ -60,14 +60,10 @@ class RobotHandle:
         self.qpos_adr: int | None  # None: no free joint (a static robot)
         self.qvel_adr: int | None
         self.qpos_adr, self.qvel_adr = free_joint(m, self.body_id) or (None, None)
+        self.free = self.qpos_adr is not None
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
-        # where apply_speed writes the servos' targets in d.ctrl: a slice when they follow one another
-        self._ctrl: slice | list[int] | None = None
-        if self.servo:
-            consecutive = self.servo == list(range(self.servo[0], self.servo[0] + len(self.servo)))
-            self._ctrl = slice(self.servo[0], self.servo[-1] + 1) if consecutive else self.servo
         self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
         self.damping = 0.0  # Blender's linear damping of its body (the robot class's `damping`)
@@ -85,10 +81,6 @@ class RobotHandle:
         self.index = -1  # its place among the simulation's robots (see Simulation.touching)
         # views of its base's world position and row-major rotation in MjData (whose arrays stay put)
         self._xpos, self._xmat = sim.data.xpos[self.body_id], sim.data.xmat[self.body_id]
-
-    @property
-    def free(self) -> bool:
-        return self.qpos_adr is not None
 
     def _base_qvel(self) -> np.ndarray:
         """The free joint's 6 velocities in qvel, a view: writing it sets the robot's velocity."""
@@ -120,7 +112,8 @@ class RobotHandle:
                 # what MORSE's ground friction left of the command over the period (kits.ground_friction)
                 planar = ground_friction.turned(linear[0], linear[1], angular[2],
                                                 self._slide(linear[0], linear[1], frequency))
-            d.ctrl[self._ctrl] = self.follow("base servos", planar)
+            ctrl, (vx, vy, wz) = d.ctrl, self.follow("base servos", planar)
+            ctrl[self.servo[0]], ctrl[self.servo[1]], ctrl[self.servo[2]] = vx, vy, wz  # cheaper than a slice
             if self.free and self.ground and self._follow["base servos"].held == 0:
                 # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
                 # pushing at the origin, below the centre of mass, would rock it); the servos then hold it

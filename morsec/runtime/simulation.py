@@ -775,7 +775,7 @@ class Simulation:
         self.stability.remember()
         self._touching = None  # contacts may have changed since the last frame (a service's reset, recover)
         for comp in self.actuators:
-            if comp.active and comp.schedule.due(t):
+            if comp.active and (comp.schedule.every_frame or comp.schedule.due(t)):
                 self._tick_actuator(comp)
         if self.dynamics:
             self._physics(m, d)
@@ -798,7 +798,7 @@ class Simulation:
                 sampled = True
         self.clock.tick()
         t = self.clock.elapsed
-        due = [c for c in self.sensors if c.active and c.schedule.due(t)]
+        due = [c for c in self.sensors if c.active and (c.schedule.every_frame or c.schedule.due(t))]
         if due:
             mujoco.mj_kinematics(m, d)
             if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
@@ -885,9 +885,12 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
+        for stream in comp.out_streams:
+            if stream.listening:
+                break
+        else:
+            return  # no stream has a reader: no message built (local_data, computed above, stays readable)
         listening = [stream for stream in comp.out_streams if stream.listening]
-        if not listening:
-            return
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         if message is not None:
             self.outbox.append((listening, message))
@@ -936,10 +939,14 @@ class Stability:
     def __init__(self, model, data, initial_qpos: np.ndarray):
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
         self.initial_qpos = initial_qpos
-        self.qpos = data.qpos.copy()  # the state before the frame
-        self.qvel = data.qvel.copy()
-        self.data_qpos, self.data_qvel = data.qpos, data.qvel  # views of MjData's (whose arrays stay put)
-        self.numbers = data.warning.number  # a view of MuJoCo's warning counters: reading it costs nothing
+        # the state before the frame: qpos then qvel, copied by one call (mj_getState)
+        self.model, self.data = model, data
+        self.spec = int(mujoco.mjtState.mjSTATE_QPOS | mujoco.mjtState.mjSTATE_QVEL)
+        self.state = np.zeros(mujoco.mj_stateSize(model, self.spec))
+        self.qpos, self.qvel = self.state[:model.nq], self.state[model.nq:]  # views of it
+        self.remember()
+        # a view of MuJoCo's three counters of bad values (they follow one another): reading it costs nothing
+        self.numbers = data.warning.number[self.BAD_QPOS:self.BAD_QACC + 1]
         self.warnings = self._count()
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
         for j in range(model.njnt):
@@ -949,11 +956,10 @@ class Stability:
         self.reported: set[int] = set()
 
     def _count(self) -> int:
-        return sum(self.numbers[self.BAD_QPOS:self.BAD_QACC + 1].tolist())  # the three follow one another
+        return sum(self.numbers.tolist())
 
     def remember(self) -> None:
-        np.copyto(self.qpos, self.data_qpos)
-        np.copyto(self.qvel, self.data_qvel)
+        mujoco.mj_getState(self.model, self.data, self.state, self.spec)
 
     def check(self, model, data) -> None:
         count = self._count()

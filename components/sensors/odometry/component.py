@@ -84,9 +84,13 @@ class RawOdometry(Odometry):
 
 class IntegratedOdometry(Odometry):
     def default_action(self):
-        prev_pos, prev_rot, pos, rot = self.advance()
-        (x, y, z), rel_rot = self._in_origin(pos, rot)
-        roll, pitch, yaw = euler_of_xmat(rel_rot)
+        # advance and _in_origin written out: the default level of a sensor ticking at every frame
+        prev_pos, prev_rot = self.previous_pos, self.previous_rot
+        pos, rot = self.xpos.tolist(), self.xmat.tolist()
+        self.previous_pos, self.previous_rot = pos, rot
+        o, origin_rot = self.origin_pos, self.origin_rot
+        x, y, z = transpose_apply(origin_rot, (pos[0] - o[0], pos[1] - o[1], pos[2] - o[2]))
+        roll, pitch, yaw = euler_of_xmat(transpose_times(origin_rot, rot))
         # velocities: the previous->current transform in the previous sensor frame, times the nominal rate
         f = self.frequency
         vx, vy, vz = transpose_apply(prev_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1], pos[2] - prev_pos[2]))
