@@ -66,6 +66,7 @@ class GameObject:
         self._kind = kind  # robot, object, component or scene (the script holder)
         self._parent = parent
         self._defaults = defaults  # game properties it has unless written (a component's properties ...)
+        self._found_bag: dict | None = None  # its game properties in the running simulation, once found (property_bag)
 
     # ---- identity
     @property
@@ -430,9 +431,12 @@ class World:
     def property_bag(self, obj: GameObject, create: bool) -> dict | None:
         """The game properties morsec's sensors read of `obj` (robots, objects, tagged components): one dict,
         shared; a component without tags gets one when a property is first written."""
+        if obj._found_bag is not None:  # found before: the simulation's objects and their dicts stay put
+            return obj._found_bag
         for scene_object in getattr(self.sim, "objects", ()):
             if scene_object.name == obj.name:
-                return scene_object.properties
+                obj._found_bag = scene_object.properties
+                return obj._found_bag
         if obj._kind == "scene" or (create and not hasattr(self.sim, "objects")):
             return obj._defaults  # the script holder; or written while the simulation is being built
         if not create:
@@ -440,7 +444,8 @@ class World:
         from morsec.runtime.simulation import SceneObject
         made = SceneObject(obj.name, obj._body, obj._kind, {})
         self.sim.objects.append(made)
-        return made.properties
+        obj._found_bag = made.properties
+        return obj._found_bag
 
     def free_joint(self, body: int):
         if body not in self._free:
@@ -487,7 +492,7 @@ class World:
             point = origin + found * direction
             body = sim.model.geom_bodyid[geom[0]]
             hit = self._owner[body]
-            passing = hit is not None and self.top(hit) is ignored
+            passing = hit is not None and hit._carrier() is ignored
             if not passing and (not prop or (hit is not None and prop in hit)):
                 return hit, mathutils.Vector(point), mathutils.Vector(normal)
             if not passing and not xray:
@@ -495,12 +500,6 @@ class World:
             exclude = body  # on through it
             origin, travelled = point, travelled + found
         return None
-
-    @staticmethod
-    def top(obj: GameObject) -> GameObject:
-        while obj.parent is not None:
-            obj = obj.parent
-        return obj
 
 
 _WORLDS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()

@@ -1,11 +1,5 @@
 """MORSE's `morse.helpers.morse_math`: angle helpers."""
 
-import math
+from morsec.kits.geometry import normalize_angle as normalise_angle
 
 __all__ = ["normalise_angle"]
-
-
-def normalise_angle(angle):
-    """The angle in [-pi, pi)."""
-    return ((angle + math.pi) % (2 * math.pi)) - math.pi
-

@@ -12,16 +12,11 @@ from __future__ import annotations
 import math
 
 from morse.core import mathutils
-from morsec.kits.geometry import euler_of_xmat, transpose_apply, transpose_times
+from morsec.kits.geometry import euler_of_xmat, times_transpose, transpose_apply, transpose_times
 
 __all__ = ["Transformation3d"]
 
 _IDENTITY = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
-
-
-def _times(a, b) -> tuple:
-    """A B, row-major 3x3 as 9-sequences."""
-    return tuple(sum(a[3 * i + k] * b[3 * k + j] for k in range(3)) for i in range(3) for j in range(3))
 
 
 def _euler_matrix(roll: float, pitch: float, yaw: float) -> tuple:
@@ -137,7 +132,7 @@ class Transformation3d:
         """As update, for the robots of Blender's vehicle wrapper that go forward along y (their frame turned
         by -pi/2 about z)."""
         self.update(obj)
-        self._set(self._p, _times(self._r, (0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0)))
+        self._set(self._p, times_transpose(self._r, (0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)))
 
     def __str__(self) -> str:
         return f"x : {self.x} y : {self.y} z : {self.z} yaw : {self.yaw} pitch : {self.pitch} roll : {self.roll}"

@@ -206,7 +206,7 @@ class Replay:
                     replayed += 1
                     self.time.wake()
                     for stream in self.streams.get(channel.topic, ()):
-                        if stream.listening:
+                        if stream.direction == "OUT" and stream.listening:
                             stream.publish(json.loads(message.data))
                             sent += 1
                     self.socket.flush()

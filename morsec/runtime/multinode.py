@@ -67,9 +67,6 @@ class NodePlan:
     def owned(self) -> set[str]:
         return set(self.distribution.get(self.name, []))
 
-    def owner(self, robot: str) -> str | None:
-        return next((node for node, robots in self.distribution.items() if robot in robots), None)
-
     def local(self, manifest: Manifest) -> Manifest:
         """The part of the build this node runs: the components of its robots, their streams and services
         (the other nodes serve theirs, on the ports the build gave them)."""
