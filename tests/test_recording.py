@@ -26,7 +26,7 @@ from morsec.middleware.record.channels import NO_ROS2, ROS2_DISTRIBUTION, plan_s
 from morsec.middleware.record.ros2 import CONVERTERS
 from morsec.middleware.ros.serialisers import SERIALISERS
 from tests.runtime_helpers import MORSEC, Morsec, scene, scene_file
-from tests.test_ros import ros_master  # noqa: F401 (a roscore of this module's own)
+from tests.test_ros import ROVER_SCRIPT, ros_master  # noqa: F401 (a roscore of this module's own)
 
 ROOT = Path(__file__).resolve().parent.parent
 NODE_READER = ROOT / "tests" / "node" / "read_mcap.mjs"
@@ -401,20 +401,7 @@ def test_a_builder_scene_streaming_to_ros_records_its_ros_streams_as_ros_carries
     published, and the recording made by the scene's env.record."""
     from morsec.app.project import build_scene
     source = tmp_path / "rover.py"
-    source.write_text(textwrap.dedent("""
-        from morse.builder import *
-        robot = ATRV()
-        pose = Pose()
-        pose.add_stream('ros', 'morse.middleware.ros.pose.PoseStampedPublisher', topic='/rover/where')
-        pose.add_stream('ros', method='morse.middleware.ros.pose.TFPublisher')
-        robot.append(pose)
-        robot.translate(x=2.0)
-        motion = MotionVW()
-        motion.add_interface('ros')
-        robot.append(motion)
-        env = Environment('empty')
-        env.record('rover.mcap')
-    """), encoding="utf-8")
+    source.write_text(ROVER_SCRIPT + "env.record('rover.mcap')\n", encoding="utf-8")
     build = build_scene(source, tmp_path / "build")
     result = subprocess.run([str(MORSEC), "run", str(build), "--duration", "1", "--time-strategy", "fixed_step",
                              "--port-base", "0", "--service-port", "0"], capture_output=True, text=True, timeout=120,

@@ -116,9 +116,8 @@ def test_a_yaml_scene_streams_to_ros_and_a_twist_moves_the_robot(simulate, tmp_p
     assert moved["pose"]["pose"]["position"]["x"] > 0.5 and moved["twist"]["twist"]["linear"]["x"] > 0.5
 
 
-def test_a_builder_scene_names_serialisers_and_topics_as_morse_scripts_do(simulate, tmp_path):
-    source = tmp_path / "rover.py"
-    source.write_text(textwrap.dedent("""
+# a MORSE builder script streaming to ROS as MORSE scripts name serialisers and topics (test_recording records it)
+ROVER_SCRIPT = textwrap.dedent("""
         from morse.builder import *
         robot = ATRV()
         pose = Pose()
@@ -130,7 +129,12 @@ def test_a_builder_scene_names_serialisers_and_topics_as_morse_scripts_do(simula
         motion.add_interface('ros')
         robot.append(motion)
         env = Environment('empty')
-    """), encoding="utf-8")
+""")
+
+
+def test_a_builder_scene_names_serialisers_and_topics_as_morse_scripts_do(simulate, tmp_path):
+    source = tmp_path / "rover.py"
+    source.write_text(ROVER_SCRIPT, encoding="utf-8")
     simulate(source)
 
     assert echo("/rover/where")[0]["pose"]["position"]["x"] == pytest.approx(2.0, abs=0.05)
