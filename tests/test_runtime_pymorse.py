@@ -317,3 +317,34 @@ def test_a_stream_read_with_last_right_after_a_sleep_has_what_the_frame_did(tmp_
                 assert pose_mod.last()["x"] == pytest.approx(i, abs=1e-6), f"teleport {i}"
     finally:
         sim.stop()
+
+
+@pytest.mark.parametrize("strategy", STRATEGIES)
+def test_get_on_one_stream_then_last_on_another_reads_one_frame(tmp_path, strategy):
+    """`b.get(); a.last()` right after a sleep reads one frame in both streams, whichever of them pymorse
+    opened first: MORSE's accelerometer test reads `accel.get(); accel_pi.last()` (accel opened first), its
+    attitude test `attitude_pos.get(); attitude.last()` (attitude, in Velocity mode and created before the
+    robot's actuator, opened first). A frame's messages leave a little apart, each before the one those tests
+    read with get() (tests/test_runtime_time.py checks the order). A reader starved of the CPU for longer
+    than the gap may still read two messages together: one such read in 80 is allowed."""
+    velocity = {"name": "v", "type": "velocity", "streams": ["socket"], "properties": {"ComputationMode": "Velocity"}}
+    position = {"name": "v_pos", "type": "velocity", "streams": ["socket"],
+                "properties": {"ComputationMode": "Position"}}
+    motion = {"name": "motion", "type": "motion_vw", "streams": ["socket"]}
+    sim = Morsec(scene_file(tmp_path, scene(robot("robot", velocity, position, pose_sensor("a"), pose_sensor("b"),
+                                                  motion), strategy=strategy)), tmp_path)
+    start_all(sim)
+    try:
+        with Morse("localhost", sim.service_port) as morse:
+            a, b, v, v_pos = morse.robot.a, morse.robot.b, morse.robot.v, morse.robot.v_pos  # opened in this order
+            morse.robot.motion.publish({"v": 0.5, "w": 0.2})
+            read = []
+            for _ in range(40):
+                morse.sleep(0.01)
+                read.append(("a.get(); b.last()", a.get()["timestamp"], b.last()["timestamp"]))
+                morse.sleep(0.01)
+                read.append(("v_pos.get(); v.last()", v_pos.get()["timestamp"], v.last()["timestamp"]))
+        mixed = [entry for entry in read if entry[1] != entry[2]]
+        assert len(mixed) <= 1, f"{len(mixed)} of {len(read)} reads mixed two frames: {mixed[:4]}"
+    finally:
+        sim.stop()

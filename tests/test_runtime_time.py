@@ -427,6 +427,49 @@ def real_time_sim(tmp: Path) -> Morsec:
     return Morsec(scene_file(tmp, scene(strategy="best_effort"), "real_time"), tmp)
 
 
+def four_sensor_sim(tmp: Path) -> Morsec:
+    """A robot with, in this order: a velocity sensor in Velocity mode, one in Position mode, two poses (a, b),
+    and a motion actuator driving the robot, created last."""
+    def velocity(name: str, mode: str) -> dict:
+        return {"name": name, "type": "velocity", "streams": ["socket"], "properties": {"ComputationMode": mode}}
+    motion = {"name": "motion", "type": "motion_vw", "streams": ["socket"]}
+    robot_ = robot("robot", velocity("v", "Velocity"), velocity("v_pos", "Position"), pose_sensor("a"),
+                   pose_sensor("b"), motion)
+    return Morsec(scene_file(tmp, scene(robot_, strategy="best_effort"), "four_sensors"), tmp)
+
+
+def test_a_frames_messages_leave_apart_in_morses_order(launch):
+    """A reader polling its sockets as pymorse does (select on all of them, then each ready one read in the
+    order it opened them) reads a frame's messages one at a time, in MORSE's order: `v` (Velocity mode,
+    created before the actuator driving the robot: MORSE ran it after that actuator, sending its decision a
+    frame before the others did) first, then the others, the one created last first (b before a, as MORSE's
+    accelerometer test needs for `accel.get(); accel_pi.last()`, and v before v_pos as its attitude test does
+    for `attitude_pos.get(); attitude.last()`). Sent together, the reader would read a before b."""
+    import select
+    sim = launch(four_sensor_sim)
+    names = ("a", "b", "v", "v_pos")  # opened in this order
+    with contextlib.ExitStack() as stack:
+        socks = [stack.enter_context(sim.stream(f"robot.{name}")) for name in names]
+        for sock in socks:
+            sock.sock.setblocking(False)
+        seen: dict[float, list[str]] = {}  # frame (timestamp) -> the streams, in the order their messages were read
+        deadline = time.monotonic() + 2.0
+        while time.monotonic() < deadline:
+            ready, _, _ = select.select([s.sock for s in socks], [], [], 0.01)
+            for sock, name in zip(socks, names):
+                if sock.sock in ready:
+                    sock.buffer += sock.sock.recv(65536)
+                    while b"\n" in sock.buffer:
+                        line, _, sock.buffer = sock.buffer.partition(b"\n")
+                        seen.setdefault(json.loads(line)["timestamp"], []).append(name)
+    frames = [order for order in list(seen.values())[1:-1] if len(order) == 4]  # whole frames, once all connected
+    assert len(frames) > 60
+    b_first = sum(order.index("b") < order.index("a") for order in frames)
+    v_first = sum(order.index("v") < order.index("v_pos") for order in frames)
+    assert b_first > 0.9 * len(frames), frames[:5]
+    assert v_first > 0.9 * len(frames), frames[:5]
+
+
 def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_comes_a_frame_later(launch):
     """The answer to a sleep that ends right after a client connected to a sensor stream waits for that
     client (READER_POLL); the wait is not taken out of the next frame's: it still comes a frame's time

@@ -60,19 +60,7 @@ EXCEPTIONS = {
     "the room turn as the robot turns: tests/components/test_cameras.py",
 }
 # failures looked into, and why they remain (said after the first failure of the log)
-ANALYSED = {
-    "base/accelerometer_testing.py": "the test reads the frame a command took effect at right after `sleep(0.01)`, "
-    "once with `get()` (the message must come after the sleep's answer) and once with `last()` (it must have come "
-    "before); pymorse's polling thread reads its sockets in the order it opened them, and MORSE met both at "
-    "Blender's pace, its sensors' messages milliseconds apart. Sending a frame's messages 2 ms apart, as MORSE's "
-    "left, passes it every run but fails attitude_testing every run (`attitude_pos.get(); attitude.last()` then "
-    "reads the velocity sensor a frame before the position one, and morsec's sensors read after the physics step, "
-    "a frame ahead of MORSE's): the two tests need opposite orders until sensors read as MORSE's did",
-    "base/attitude_testing.py": "flaky (about 1 run in 6): while pitching and yawing, the Orientation actuator "
-    "corrects the roll drift every few frames with a -0.5 rad/s kick; MORSE created the attitude sensors before it "
-    "and ran them in the same logic tick, reading the velocity it had just set, which kept the kick off the frames "
-    "the test reads; morsec's sensors read after the physics step, one decision behind",
-}
+ANALYSED: dict[str, str] = {}
 
 
 def run_suite(targets: list[str]) -> str:

@@ -250,6 +250,8 @@ TIMESTAMP = DataField("timestamp", 0.0, "float", "simulated time of the measure,
 class Sensor(Device):
     kind = "sensor"
     direction = "OUT"
+    # a sensor with a ComputationMode: "Velocity" or "Position", resolved by its start() (Automatic per robot)
+    mode: str | None = None
 
     @classmethod
     def fields_at(cls, level: str | None) -> list[DataField]:

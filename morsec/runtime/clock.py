@@ -71,6 +71,17 @@ class Clock:
             return 0.0
         return max(0.0, remaining)
 
+    def spare(self, paced: bool = False) -> float:
+        """Wall-clock seconds until the next frame is due, as `delay` would wait them, read without moving
+        the schedule: 0 when fixed_step runs as fast as it can."""
+        if self.strategy != "best_effort":
+            if not paced:
+                return 0.0
+            if not self._paced:  # delay() will put the next frame a frame's time from now
+                return self.dt / self.scale
+        target = self._wall_anchor + (self.elapsed - self._sim_anchor) / self.scale
+        return max(0.0, target - _time.perf_counter())
+
     def set_scale(self, scale: float) -> None:
         self.scale = time_scale(scale)
         self.restart()

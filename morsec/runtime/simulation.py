@@ -48,6 +48,12 @@ ANSWER_GAP = 0.002
 # wait: the answers to sleeps leave at least READER_POLL (wall clock) after a client connected to a sensor stream,
 # so that it has read the messages the stream sent it before (the frame its sleep ended at)
 READER_POLL = 0.015
+# while the loop has time to spare before its next frame, a frame's sensor messages leave MESSAGE_GAP apart (wall
+# clock), within MESSAGE_SHARE of that time, the rest together: a client's polling thread (pymorse's) reads each
+# before the next comes, so that `b.get(); a.last()` finds a's message of the frame when b's wakes get() (a sent
+# first). Sent together, pymorse reads them in the order it opened their streams, and b's may wake get() first.
+MESSAGE_GAP = 0.002
+MESSAGE_SHARE = 0.5
 MAX_POLL_WAIT = 1.0  # s: a long wait between frames is cut into polls no longer than this
 PAUSED_POLL = 0.02  # s of wall time between two looks at a paused viewer (requests are served meanwhile)
 DEBUG_FIELDS = 6  # a component's data fields listed by show_debug, at most
@@ -179,8 +185,8 @@ class Simulation:
         self.last_stream_input = 0.0  # simulated s: when the last message to an actuator stream arrived
         self.last_stream_input_wall = -float("inf")  # ... and when, on the wall clock
         self.last_reader_opened = -float("inf")  # wall clock: when a client last connected to a sensor stream
-        # the frame's sensor messages, (streams, message) in the sensors' order, sent at the end of the frame
-        self.outbox: list[tuple[list, Any]] = []
+        # the frame's sensor messages, (send rank, streams, message), sent at the end of the frame by rank
+        self.outbox: list[tuple[tuple[int, int], list, Any]] = []
         self.seed = self.options.seed if self.options.seed is not None else env.get("seed")
         self.client_came = not self.options.wait_for_client  # a client's request or stream connection was seen
         self.service_clients: set = set()  # --wait-for-client: the service clients that made requests
@@ -232,6 +238,7 @@ class Simulation:
             except ValueError as err:  # a component that cannot work in this scene (missing geodetic properties ...)
                 self.poller.close()
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
+        self.send_rank = send_ranks(self.components)  # after start: the sensors' computation modes resolved
 
         self.time_services = TimeServices(self)
         self.requests.on_request.append(self.time_services.arrived)
@@ -712,7 +719,7 @@ class Simulation:
                         continue
                 if started is None:
                     started = time.perf_counter()
-                self.frame()  # ends with a flush
+                self.frame(spread=True)  # ends with a flush
                 if self.view is not None:
                     self.view.sync()
                 if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
@@ -748,15 +755,15 @@ class Simulation:
             self.poller.poll(left)
             self._flush()
 
-    def frame(self) -> None:
-        """One frame: the physics and the components (step), then the sensors' messages sent. The answers
-        to the sleeps that ended at this frame leave ANSWER_GAP later (`time_services.wake` in `run`): a
-        client holding such an answer has had this frame's messages for a while, whatever order its polling
-        thread reads its sockets in."""
+    def frame(self, spread: bool = False) -> None:
+        """One frame: the physics and the components (step), then the sensors' messages sent (with `spread`,
+        MESSAGE_GAP apart while the loop has time to spare). The answers to the sleeps that ended at this frame
+        leave ANSWER_GAP later (`time_services.wake` in `run`): a client holding such an answer has had this
+        frame's messages for a while, whatever order its polling thread reads its sockets in."""
         if self.multinode is not None:  # the other nodes' robots placed; held here while this node runs ahead
             self.multinode.exchange()
         self.step()
-        self._send_sensor_messages()
+        self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
         self._flush()
 
     def answer(self) -> None:
@@ -831,15 +838,28 @@ class Simulation:
         if self.foxglove is not None:  # also while no frame runs (a client awaited, lockstep): Foxglove still sees
             self.foxglove.frame(self.data, self.clock.now())
 
-    def _send_sensor_messages(self) -> None:
+    def _send_sensor_messages(self, within: float = 0.0) -> None:
         """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a
-        client whose sleep ended reads this frame's data with `last()`. Sensors created last send first, as
-        MORSE ran the logic of the object created last first: a client reading one stream with `get()` then
-        another with `last()` finds both."""
+        client whose sleep ended reads this frame's data with `last()`. They leave in the order of
+        `send_ranks`, MESSAGE_GAP apart for `within` wall-clock seconds (requests are served meanwhile), the
+        rest together."""
         outbox, self.outbox = self.outbox, []
-        for streams, message in reversed(outbox):
+        if len(outbox) > 1:
+            outbox.sort(key=lambda item: item[0])
+        until = time.perf_counter() + within
+        for k, (_, streams, message) in enumerate(outbox):
+            if k and time.perf_counter() + MESSAGE_GAP <= until:
+                self._pause(MESSAGE_GAP)
             for stream in streams:
                 stream.publish(message)
+
+    def _spare(self) -> float:
+        """Wall-clock seconds before the next frame is due: none while fixed_step runs free or a lockstep
+        client paces the loop."""
+        if self.sync is not None and self.sync.engaged:
+            return 0.0
+        paced = self.hold is not None and bool(self.hold.awake) and self.hold.pacing()
+        return self.clock.spare(paced)
 
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
@@ -893,7 +913,7 @@ class Simulation:
         listening = [stream for stream in comp.out_streams if stream.listening]
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         if message is not None:
-            self.outbox.append((listening, message))
+            self.outbox.append((self.send_rank[comp.fqn], listening, message))
 
     def close(self) -> None:
         view = getattr(self, "view", None)  # None: closed, or __init__ stopped before opening it
@@ -923,6 +943,28 @@ class Simulation:
         if recorder is not None:  # last: it waits for its writer to finish the file
             self.recorder = None
             recorder.close()
+
+
+def send_ranks(components: list[ComponentRuntime]) -> dict[str, tuple[int, int]]:
+    """The order a frame's sensor messages leave in (lowest rank first): the order in which MORSE's messages
+    carrying the same actuator decision left. MORSE ran each object's logic, the object created last first,
+    then the physics step; morsec's sensors all read after it. So a MORSE sensor reading its robot's
+    velocities (ComputationMode Velocity), run after an actuator created after it had set them, sent that
+    decision in the frame it was made, and every other sensor a frame later, in the pose the physics made of
+    it: those velocity sensors first, then the others, each group the sensor created last first. Left a little
+    apart in this order, `b.get(); a.last()` reads one frame in both streams when a leaves before b, as
+    MORSE's accelerometer test (accel_pi before accel) and attitude test (attitude before attitude_pos) read."""
+    order = {c.fqn: index for index, c in enumerate(components)}
+    last_driver: dict[str, int] = {}  # robot -> the index of its last actuator driving its velocities
+    for c in components:
+        if c.kind == "actuator" and getattr(c.instance, "base_servo", False):
+            last_driver[c.robot] = order[c.fqn]
+    ranks = {}
+    for c in components:
+        if c.kind == "sensor":
+            ahead = getattr(c.instance, "mode", None) == "Velocity" and last_driver.get(c.robot, -1) > order[c.fqn]
+            ranks[c.fqn] = (0 if ahead else 1, -order[c.fqn])
+    return ranks
 
 
 class Stability:
