@@ -466,8 +466,10 @@ def test_a_frames_messages_leave_apart_in_morses_order(launch):
     assert len(frames) > 60
     b_first = sum(order.index("b") < order.index("a") for order in frames)
     v_first = sum(order.index("v") < order.index("v_pos") for order in frames)
-    assert b_first > 0.9 * len(frames), frames[:5]
-    assert v_first > 0.9 * len(frames), frames[:5]
+    # sent together, a would come first (b in a fifth of the frames at most); a reader starved of the CPU
+    # for longer than the gap (a busy machine) reads some frames together
+    assert b_first > 2 / 3 * len(frames), (b_first, len(frames), frames[:5])
+    assert v_first > 2 / 3 * len(frames), (v_first, len(frames), frames[:5])
 
 
 def test_the_frame_after_a_sleep_answer_that_waited_for_a_new_stream_client_comes_a_frame_later(launch):
