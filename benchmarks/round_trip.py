@@ -13,7 +13,12 @@
 - anchor: a single-threaded `selectors` echo server in its own Python process, answering each line.
 
 The client is the same for both: one TCP connection (TCP_NODELAY), one request in flight, the next sent when
-the answer's line is read. Calls alternate between the sides (morsec, echo, morsec ...) so that both see the
+the answer's line is read. `--apart` keeps the client on the first CPU and both servers on the second: each
+server then answers from a CPU of its own, as a simulation running frames always does; without it the kernel
+places them, and on an idle machine it wakes the echo server on its client's CPU (no CPU is woken for a
+round trip), which it cannot do for a loop busy with frames (docs/running.md#performance).
+
+Calls alternate between the sides (morsec, echo, morsec ...) so that both see the
 same machine load at the same moments; each side's figure is the mean of its calls but the slowest 5% (a
 process preempted by another's work, which load brings, costs either side a scheduler's time slice: that is
 the machine's, not the design's), its median beside it.
@@ -28,7 +33,7 @@ dearest case and the closest to the target. A thread answering while `mj_step` r
 would not answer sooner after the physics (the loop holds the GIL there), and would cost a lock around
 every step and GIL hand-offs: not taken.
 
-    python benchmarks/round_trip.py [--calls 2000]
+    python benchmarks/round_trip.py [--calls 2000] [--apart]
 """
 
 from __future__ import annotations
@@ -109,11 +114,19 @@ def typical(times: list[float]) -> float:
     return sum(kept) / len(kept)
 
 
-def start_morsec(build: Path, strategy: str) -> tuple[subprocess.Popen, int]:
+def on_cpu(cpu: int | None):
+    """A child's preexec_fn that keeps it (all its threads) on one CPU; None: the kernel's choice."""
+    if cpu is None:
+        return None
+    return lambda: os.sched_setaffinity(0, {cpu})
+
+
+def start_morsec(build: Path, strategy: str, cpu: int | None = None) -> tuple[subprocess.Popen, int]:
     port = free_port()
     proc = subprocess.Popen([sys.executable, "-m", "morsec", "run", str(build), "--time-strategy", strategy,
                              "--service-port", str(port), "--port-base", "0"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=_env())
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=_env(),
+                            preexec_fn=on_cpu(cpu))
     assert proc.stdout is not None
     for line in proc.stdout:
         if "SCENE INITIALIZED" in line:
@@ -121,8 +134,9 @@ def start_morsec(build: Path, strategy: str) -> tuple[subprocess.Popen, int]:
     raise SystemExit(f"morsec run ended before SCENE INITIALIZED (exit {proc.wait()})")
 
 
-def start_echo() -> tuple[subprocess.Popen, int]:
-    proc = subprocess.Popen([sys.executable, "-c", ECHO_SERVER], stdout=subprocess.PIPE, text=True)
+def start_echo(cpu: int | None = None) -> tuple[subprocess.Popen, int]:
+    proc = subprocess.Popen([sys.executable, "-c", ECHO_SERVER], stdout=subprocess.PIPE, text=True,
+                            preexec_fn=on_cpu(cpu))
     assert proc.stdout is not None
     return proc, int(proc.stdout.readline())
 
@@ -132,18 +146,24 @@ CASES = (("best_effort", "best_effort"), ("fixed_step", "fixed_step, between sle
 TARGET = 2.0
 
 
-def measure(calls: int) -> list[tuple[str, list[float], list[float]]]:
-    """(case, morsec's round trips, the echo server's) in seconds, `calls` of each, per case."""
+def measure(calls: int, apart: bool = False) -> list[tuple[str, list[float], list[float]]]:
+    """(case, morsec's round trips, the echo server's) in seconds, `calls` of each, per case. `apart`: the
+    client on the first CPU, both servers on the second (else where the kernel puts them)."""
     results = []
+    client_cpus = os.sched_getaffinity(0)
+    server_cpu = None
+    if apart:
+        first, server_cpu = sorted(client_cpus)[:2]
+        os.sched_setaffinity(0, {first})
     with tempfile.TemporaryDirectory() as tmp:
         build = Path(tmp) / "build"
         subprocess.run([sys.executable, "-m", "morsec", "build", str(SCENE), "-o", str(build)], check=True,
                        capture_output=True, env=_env())
-        echo_proc, echo_port = start_echo()
+        echo_proc, echo_port = start_echo(server_cpu)
         echo = Client(echo_port)
         try:
             for strategy, case in CASES:
-                proc, port = start_morsec(build, strategy)
+                proc, port = start_morsec(build, strategy, server_cpu)
                 ours = Client(port)
                 try:
                     greeted = time.perf_counter()  # the first request: the wall-clock phase starts
@@ -172,6 +192,7 @@ def measure(calls: int) -> list[tuple[str, list[float], list[float]]]:
             echo.close()
             echo_proc.terminate()
             echo_proc.wait()
+            os.sched_setaffinity(0, client_cpus)
     return results
 
 
@@ -182,8 +203,10 @@ def _env() -> dict[str, str]:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--calls", type=int, default=2000, help="round trips of each side per case")
+    parser.add_argument("--apart", action="store_true",
+                        help="the client on one CPU and both servers on another (else: the kernel's choice)")
     args = parser.parse_args(argv)
-    for case, mine, theirs in measure(args.calls):
+    for case, mine, theirs in measure(args.calls, args.apart):
         ratio = typical(mine) / typical(theirs)
         print(f"`time now` round trip, {case:<26} {typical(mine) * 1e6:6.1f} us (median "
               f"{statistics.median(mine) * 1e6:5.1f}) | selectors echo server {typical(theirs) * 1e6:6.1f} us "

@@ -41,6 +41,10 @@ log = logging.getLogger("morsec.runtime")
 
 POLL_PERIOD = 0.0005  # s of wall time between socket polls when frames run faster than that
 CONVERSATION = 0.01  # s of wall time after a request during which the sockets are polled every frame
+# s of wall time after a request during which a loop waiting for the next frame polls without sleeping: a client
+# that converses sends its next request within microseconds of reading an answer, and a process woken from
+# sleep on an idle core is slower to answer it than the whole round trip (docs/running.md#performance)
+SPIN_AFTER_REQUEST = 0.0005
 # wall-clock s between a frame's sensor messages and the answers to the sleeps that ended at it, so that a client
 # reading its sockets in any order (pymorse's polling thread) has the messages when it gets the answer
 ANSWER_GAP = 0.002
@@ -744,7 +748,10 @@ class Simulation:
 
     def _wait(self, delay: float) -> None:
         while delay > 0 and not self.quitting:
-            self.poller.poll(min(delay, MAX_POLL_WAIT))
+            if time.perf_counter() - self.requests.last_request < SPIN_AFTER_REQUEST:
+                self.poller.poll(0.0)  # a client converses: its next request is a few microseconds away
+            else:
+                self.poller.poll(min(delay, MAX_POLL_WAIT))
             self._flush()
             delay = self._delay()  # asked again: a request may have changed the time scale, a client slept
 
