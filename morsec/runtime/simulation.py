@@ -748,10 +748,7 @@ class Simulation:
 
     def _wait(self, delay: float) -> None:
         while delay > 0 and not self.quitting:
-            if time.perf_counter() - self.requests.last_request < SPIN_AFTER_REQUEST:
-                self.poller.poll(0.0)  # a client converses: its next request is a few microseconds away
-            else:
-                self.poller.poll(min(delay, MAX_POLL_WAIT))
+            self._poll(min(delay, MAX_POLL_WAIT))
             self._flush()
             delay = self._delay()  # asked again: a request may have changed the time scale, a client slept
 
@@ -759,8 +756,15 @@ class Simulation:
         """Poll the sockets for `seconds` of wall time (requests are handled; no frame runs)."""
         until = time.perf_counter() + seconds
         while (left := until - time.perf_counter()) > 0 and not self.quitting:
-            self.poller.poll(left)
+            self._poll(left)
             self._flush()
+
+    def _poll(self, timeout: float) -> None:
+        """Wait up to `timeout` for the sockets, and serve them; without sleeping while a client converses
+        (SPIN_AFTER_REQUEST): its next request is a few microseconds away."""
+        if time.perf_counter() - self.requests.last_request < SPIN_AFTER_REQUEST:
+            timeout = 0.0
+        self.poller.poll(timeout)
 
     def frame(self, spread: bool = False) -> None:
         """One frame: the physics and the components (step), then the sensors' messages sent (with `spread`,
