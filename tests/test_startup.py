@@ -1,7 +1,8 @@
 """What start-up does not pay for (issue 14): `morsec run` of a build folder imports nothing that only building
-needs and assembles only the `run` command; an up-to-date build is not compiled again, and anything a build
-is made from, changed, makes it compile. Each check runs a real `morsec` in a subprocess (a fresh
-interpreter: what the test process imported does not count)."""
+needs, nor typer (morsec.cli.run_args reads its command line), and another command assembles only itself; an
+up-to-date build is not compiled again, and anything a build is made from, changed, makes it compile. Each
+check runs a real `morsec` in a subprocess (a fresh interpreter: what the test process imported does not
+count)."""
 
 from __future__ import annotations
 
@@ -42,6 +43,8 @@ FOXGLOVE_ONLY = ("foxglove", "morsec.runtime.foxglove")
 RECORD_ONLY = ("mcap", "rosbags", "morsec.middleware.record", "morsec.app.replay")
 # what only a scene with MORSE-API components needs: the emulation of MORSE's core, Blender's mathutils
 MORSE_API_ONLY = ("morse", "morse.core", "morse.core.emulation", "morse.helpers", "mathutils")
+# what a usual `morsec run` command line does not need (morsec.cli.run_args reads it): typer and its adapters
+TYPER_ONLY = ("typer", "morsec.cli.assemble", "morsec.cli.running")
 
 AT_SCENE_INITIALIZED = """\
 import gc, json, sys
@@ -77,7 +80,7 @@ def scene(tmp_path) -> Path:
 def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
     build = build_scene(scene, tmp_path / "build")
     result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY
-                                                       + MORSE_API_ONLY), "run", str(build),
+                                                       + MORSE_API_ONLY + TYPER_ONLY), "run", str(build),
                         "--duration", "0.05",
                         "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
     line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))

@@ -3,7 +3,7 @@ built-in socket and text included (see pyproject.toml). A package adds one the s
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache, lru_cache
 
 from morsec.errors import MorsecError, did_you_mean
 from morsec.middleware.base import Middleware
@@ -17,7 +17,7 @@ def middlewares() -> dict[str, type[Middleware]]:
     return {name: _load(ep) for name, ep in _registered().items()}
 
 
-@lru_cache(maxsize=None)
+@cache
 def middleware(name: str) -> type[Middleware]:
     """The middleware registered as `name`, its module alone imported: a run imports the middlewares its scene
     uses, not every one installed."""
