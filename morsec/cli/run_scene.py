@@ -23,6 +23,9 @@ def run_scene(scene: Path, *, time_strategy: TimeStrategy | None, duration: floa
     import logging
 
     from morsec.app.project import prepare_build
+    from morsec.kits.render import import_mujoco_gl_on_first_use
+    if view is None:  # a viewer draws from the start (and MuJoCo Studio's own way): its GL is imported at once
+        import_mujoco_gl_on_first_use()
     from morsec.runtime.launch import run_simulation
     from morsec.runtime.simulation import RunOptions
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
