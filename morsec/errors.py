@@ -7,7 +7,6 @@ A scene error reads `file:line:col: <yaml path>: <message>`, e.g.
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable, Sequence
 
 
@@ -63,6 +62,7 @@ def close_matches(word: str, choices: Iterable[str], n: int = 3) -> list[str]:
     """The choices closest to `word`, best first; case differences count as close, and a word without a
     folder is compared with the last part of the choices that have one ('indoor-2' is close to
     'indoors-1/indoor-1')."""
+    import difflib  # a mistake's message only: a start does not import it
     choices = list(dict.fromkeys(choices))
     matches = difflib.get_close_matches(word, choices, n=n, cutoff=0.6)
     if "/" not in word:

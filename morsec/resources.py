@@ -7,7 +7,6 @@ from __future__ import annotations
 import os
 import re
 import sys
-import tomllib
 from pathlib import Path
 
 from morsec.errors import MorsecError
@@ -65,6 +64,7 @@ def project_root(start: Path) -> Path | None:
 
 
 def project_component_dirs(root: Path) -> list[Path]:
+    import tomllib  # a project's file only: a run of a build folder does not read one
     with open(root / PROJECT_FILE, "rb") as f:
         try:
             config = tomllib.load(f)

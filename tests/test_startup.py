@@ -1,7 +1,8 @@
 """What start-up does not pay for (issue 14): `morsec run` of a build folder imports nothing that only building
-needs and assembles only the `run` command; an up-to-date build is not compiled again, and anything a build
-is made from, changed, makes it compile. Each check runs a real `morsec` in a subprocess (a fresh
-interpreter: what the test process imported does not count)."""
+needs, nor typer (morsec.cli.run_args reads its command line), and another command assembles only itself; an
+up-to-date build is not compiled again, and anything a build is made from, changed, makes it compile. Each
+check runs a real `morsec` in a subprocess (a fresh interpreter: what the test process imported does not
+count)."""
 
 from __future__ import annotations
 
@@ -42,18 +43,39 @@ FOXGLOVE_ONLY = ("foxglove", "morsec.runtime.foxglove")
 RECORD_ONLY = ("mcap", "rosbags", "morsec.middleware.record", "morsec.app.replay")
 # what only a scene with MORSE-API components needs: the emulation of MORSE's core, Blender's mathutils
 MORSE_API_ONLY = ("morse", "morse.core", "morse.core.emulation", "morse.helpers", "mathutils")
+# what a usual `morsec run` command line does not need (morsec.cli.run_args reads it): typer and its adapters
+TYPER_ONLY = ("typer", "morsec.cli.assemble", "morsec.cli.running")
 
+# what only rendering needs: the GL backend (EGL or OSMesa) MuJoCo renders with (kits.render imports it when
+# something first renders)
+GL_ONLY = ("OpenGL", "mujoco.egl", "mujoco.osmesa")
+
+# `morsec run` with Simulation.announce reporting which of argv[1]'s modules are loaded (and whether the
+# collector is on) at SCENE INITIALIZED; the runtime is patched once morsec imports it, so that the test
+# imports nothing (MuJoCo above all) before morsec does
 AT_SCENE_INITIALIZED = """\
-import gc, json, sys
-from morsec.runtime.simulation import Simulation
-announce = Simulation.announce
+import gc, importlib.machinery, json, sys
 
-def report(self, out=sys.stdout):
-    announce(self, out)
-    print("MODULES " + json.dumps({"loaded": sorted(m for m in sys.argv[1].split(",") if m in sys.modules),
-                                   "gc": gc.isenabled()}), flush=True)
+def report(announce):
+    def announce_and_report(self, out=sys.stdout):
+        announce(self, out)
+        print("MODULES " + json.dumps({"loaded": sorted(m for m in sys.argv[1].split(",") if m in sys.modules),
+                                       "gc": gc.isenabled()}), flush=True)
+    return announce_and_report
 
-Simulation.announce = report
+class PatchSimulation:
+    def find_spec(self, name, path, target=None):
+        if name != "morsec.runtime.simulation":
+            return None
+        spec = importlib.machinery.PathFinder.find_spec(name, path)
+        run = spec.loader.exec_module
+        def exec_module(module):
+            run(module)
+            module.Simulation.announce = report(module.Simulation.announce)
+        spec.loader.exec_module = exec_module
+        return spec
+
+sys.meta_path.insert(0, PatchSimulation())
 from morsec.cli import main
 main(sys.argv[2:])
 """
@@ -67,6 +89,34 @@ def run_python(code: str, *args: str, cwd: Path | None = None) -> subprocess.Com
     return result
 
 
+def test_mujoco_imported_for_a_run_loads_its_gl_backend_when_something_first_renders():
+    """A run imports MuJoCo without its GL backend (kits.render.import_mujoco_gl_on_first_use); whatever renders
+    first (mujoco.Renderer, as the cameras and a lab's own component do; mujoco.GLContext) gets the backend
+    morsec chose, and MUJOCO_GL stays as it was for child processes."""
+    code = """\
+import os, sys
+import morsec
+chosen = os.environ["MUJOCO_GL"]
+from morsec.kits.render import import_mujoco_gl_on_first_use
+import_mujoco_gl_on_first_use()
+import mujoco
+assert os.environ["MUJOCO_GL"] == chosen
+assert not any(m in sys.modules for m in ("OpenGL", "mujoco.egl", "mujoco.osmesa")), "GL imported early"
+model = mujoco.MjModel.from_xml_string(
+    '<mujoco><worldbody><light pos="0 0 3"/><geom type="box" size=".5 .5 .5" rgba="1 0 0 1"/>'
+    '<camera name="c" pos="0 0 3"/></worldbody></mujoco>')
+data = mujoco.MjData(model)
+mujoco.mj_forward(model, data)
+renderer = mujoco.Renderer(model, 32, 32)
+renderer.update_scene(data, camera="c")
+image = renderer.render()
+print(chosen, int(image[16, 16, 0]), int(image[16, 16, 1]), mujoco.GLContext.__module__)
+"""
+    backend, red, green, module = run_python(code).stdout.split()
+    assert backend in ("egl", "osmesa") and module == f"mujoco.{backend}"
+    assert int(red) > int(green) + 100  # the red box, lit, seen from above (a background would be grey)
+
+
 @pytest.fixture
 def scene(tmp_path) -> Path:
     path = tmp_path / "scene.yaml"
@@ -77,7 +127,7 @@ def scene(tmp_path) -> Path:
 def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
     build = build_scene(scene, tmp_path / "build")
     result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY
-                                                       + MORSE_API_ONLY), "run", str(build),
+                                                       + MORSE_API_ONLY + TYPER_ONLY + GL_ONLY), "run", str(build),
                         "--duration", "0.05",
                         "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
     line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))

@@ -1,21 +1,12 @@
-"""The `morsec` command: a typer app assembled from one module per command group; each command calls
-one function of the application layer.
+"""The `morsec` command: a typer app (`morsec.cli.assemble`), assembled for the command a command line names.
 
-Typer builds a command's adapter (its click parameters) from the function's signature, and each command
-module imports what its annotations name: a command line that names its command (`morsec run ...`)
-assembles that command only, so `morsec run` pays for neither the other commands nor their imports.
-`morsec`, `morsec --help` or an unknown command assemble all of them."""
+`morsec run` with options it knows is read without typer (`morsec.cli.run_args`): a start does not pay for
+typer and its click parameters. Anything else (`--help`, a mistake, another command) goes to typer."""
 
 from __future__ import annotations
 
 import gc
-import importlib
 import sys
-from typing import Annotated
-
-import typer
-
-from morsec import __version__
 
 # command -> the module of morsec.cli defining it (a function of the same name), in the order --help lists them
 COMMANDS = {
@@ -26,48 +17,13 @@ COMMANDS = {
 }
 
 
-def _versions() -> str:
-    import mujoco
-    return f"morsec {__version__} (MuJoCo {mujoco.__version__})"
-
-
-def _print_version(value: bool) -> None:
-    if value:
-        typer.echo(_versions())
-        raise typer.Exit()
-
-
-def _options(
-    version: Annotated[bool | None, typer.Option("--version", callback=_print_version, is_eager=True,
-                                                    help="print the versions of morsec and MuJoCo")] = None,
-) -> None:
-    """morsec: MORSE scenes compiled to MuJoCo."""
-
-
-def version() -> None:
-    """Print the versions of morsec and MuJoCo."""
-    typer.echo(_versions())
-
-
-def make_app(only: str | None = None) -> typer.Typer:
-    """The command line with every command, or with the command `only` alone (a known command's name)."""
-    app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False,
-                      help="morsec: MORSE scenes compiled to MuJoCo.")
-    for name, module in COMMANDS.items():
-        if only is None or only == name:
-            function = getattr(importlib.import_module(f"morsec.cli.{module}"), name.replace("-", "_"))
-            app.command(name=name)(function)
-    app.callback()(_options)
-    app.command()(version)
-    return app
-
-
 def command_of(args: list[str]) -> str | None:
     """The command a command line names, when it names a known one first; None otherwise."""
     return args[0] if args and args[0] in COMMANDS else None
 
 
 def main(args: list[str] | None = None, prog_name: str | None = None) -> None:
+    """Run the command line `args` (sys.argv's by default); exits, as typer does, with the command's code."""
     args = sys.argv[1:] if args is None else list(args)
     command = command_of(args)
     if command == "run":
@@ -75,12 +31,22 @@ def main(args: list[str] | None = None, prog_name: str | None = None) -> None:
         # passes over them are wasted, a tenth of the start. morsec.runtime.launch turns it on again, once
         # the simulation is initialized
         gc.disable()
+        from morsec.cli.run_args import parse_run_args
+        options = parse_run_args(args[1:])
+        if options is not None:
+            from morsec.cli.run_scene import run_command
+            run_command(options)
+    from morsec.cli.assemble import make_app
     make_app(command)(args=args, prog_name=prog_name)
 
 
 def __getattr__(name: str):
     if name == "app":  # the whole command line (typer.testing's CliRunner, docs)
+        from morsec.cli.assemble import make_app
         return make_app()
+    if name == "make_app":
+        from morsec.cli.assemble import make_app
+        return make_app
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -1,13 +1,12 @@
 """What every command shares: user errors in one line with their exit code, output for a terminal or a pipe.
-rich is imported only by the commands that print with it (`morsec run` does not)."""
+Neither typer nor rich is imported here: rich only by the commands that print with it (`morsec run` does not),
+typer by the command line's adapters (`morsec run` may be read without them: morsec.cli.run_args)."""
 
 from __future__ import annotations
 
 import sys
 from functools import cache
 from typing import NoReturn
-
-import typer
 
 from morsec.errors import MorsecError
 
@@ -20,9 +19,15 @@ def console(stderr: bool = False):
     return Console(stderr=stderr, highlight=False)
 
 
+def echo(line: str) -> None:
+    """One line on stdout, flushed (as typer.echo)."""
+    print(line, flush=True)
+
+
 def fail(err: MorsecError) -> NoReturn:
-    typer.echo(f"error: {err}", err=True)
-    raise typer.Exit(err.exit_code)
+    """The error's line on stderr, and exit with its code (inside a typer command as outside one)."""
+    print(f"error: {err}", file=sys.stderr, flush=True)
+    raise SystemExit(err.exit_code)
 
 
 def on_terminal() -> bool:

@@ -12,8 +12,6 @@ from morsec.constants import (
     DEFAULT_BIND,
     FOXGLOVE_PORT,
     MAX_PORT,
-    MAX_TIME_SCALE,
-    MIN_TIME_SCALE,
     SERVICE_PORT,
     SERVICE_PORT_ATTEMPTS,
     STREAM_PORT_BASE,
@@ -64,37 +62,11 @@ def run(
         "else the host name); see `morsec multinode-server`")] = None,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
-    import logging
-
-    from morsec.app.project import prepare_build
-    from morsec.runtime.launch import run_simulation
-    from morsec.runtime.simulation import RunOptions
-    logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
-    if duration is not None and not duration > 0:
-        fail(MorsecError(f"--duration must be a positive number, got {duration}"))
-    if time_scale is not None and not MIN_TIME_SCALE <= time_scale <= MAX_TIME_SCALE:
-        fail(MorsecError(f"--time-scale must be between {MIN_TIME_SCALE:g} and {MAX_TIME_SCALE:g}, got {time_scale}"))
-    for name, value in (("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port),
-                        ("--foxglove-port", foxglove_port)):
-        if value is not None and not 0 <= value <= MAX_PORT:
-            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
-    if seed is not None and seed < 0:
-        fail(MorsecError(f"--seed must be 0 or more, got {seed}"))
-    if record_services and record is None:
-        fail(MorsecError("--record-services records into the file --record names: give --record FILE.mcap"))
-    try:
-        build_dir = prepare_build(scene, out)
-        options = RunOptions(strategy=time_strategy, time_scale=time_scale, bind=bind, service_port=service_port,
-                             port_base=port_base, seed=seed, view=view, view_port=view_port,
-                             output_dir=output_dir or Path.cwd(), wait_for_client=wait_for_client,
-                             foxglove=foxglove_port if foxglove else None,
-                             record=record, record_services=record_services, node=node)
-        simulated, wall = run_simulation(build_dir, options, duration)
-    except MorsecError as err:
-        fail(err)
-    factor = f" ({simulated / wall:.1f}x real time)" if wall > 0 else ""
-    typer.echo(f"simulated {simulated:.6f} s in {wall:.3f} s{factor}")
-    typer.echo("EXITING SIMULATION")
+    from morsec.cli.run_scene import run_scene
+    run_scene(scene, time_strategy=time_strategy, duration=duration, time_scale=time_scale, bind=bind,
+              service_port=service_port, port_base=port_base, seed=seed, out=out, view=view, view_port=view_port,
+              output_dir=output_dir, foxglove=foxglove, foxglove_port=foxglove_port,
+              wait_for_client=wait_for_client, record=record, record_services=record_services, node=node)
 
 
 def replay(

@@ -21,7 +21,7 @@ import copy
 import inspect
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import mujoco
 import numpy as np
@@ -31,8 +31,10 @@ from morsec.component.properties import ComponentProperties, RobotProperties
 from morsec.component.services import ServiceInfo, service
 from morsec.errors import did_you_mean
 from morsec.kits.geometry import matrix_to_euler
-from morsec.kits.layout import Part, Terrain
 from morsec.modifiers.base import Modifier
+
+if TYPE_CHECKING:  # an environment's layout is the compiler's to read: a run does not import it
+    from morsec.kits.layout import Part, Terrain
 
 
 @dataclass(frozen=True)

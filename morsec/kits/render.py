@@ -31,6 +31,9 @@ def open_renderer(model, width: int, height: int):
                              "or set MUJOCO_GL=osmesa") from None
 
 
+HEADLESS_GL = ("egl", "osmesa")  # the backends morsec chooses (morsec/__init__.py) and can install late
+
+
 def use_chosen_gl() -> None:
     """MuJoCo reads MUJOCO_GL once, when it is first imported: a program (or a test session) that imported
     mujoco before morsec got MuJoCo's default, GLFW, which needs a display. Hand mujoco.Renderer the
@@ -42,17 +45,60 @@ def use_chosen_gl() -> None:
         return
     wanted = os.environ.get("MUJOCO_GL", "").lower().strip()
     chosen = getattr(gl_context, "_MUJOCO_GL", wanted)
-    if chosen == wanted or wanted not in ("egl", "osmesa"):
+    if chosen == wanted or wanted not in HEADLESS_GL:
         return
     try:
-        if wanted == "egl":
+        _install_gl(gl_context, wanted)
+    except ImportError:
+        return  # open_renderer reports what is missing
+
+
+def import_mujoco_gl_on_first_use() -> None:
+    """Import MuJoCo without its GL backend, and have the backend morsec chose (MUJOCO_GL: egl or osmesa)
+    imported when something first renders (mujoco.Renderer, or anything asking for `GLContext`). EGL's
+    import (PyOpenGL, libEGL) is a tenth of a start and 4 MiB that a run without cameras never uses.
+    MuJoCo imported already, or another MUJOCO_GL: nothing changes. Child processes see MUJOCO_GL as it was."""
+    import os
+    import sys
+    wanted = os.environ.get("MUJOCO_GL", "").lower().strip()
+    if "mujoco" in sys.modules or wanted not in HEADLESS_GL:
+        return
+    original = os.environ["MUJOCO_GL"]
+    os.environ["MUJOCO_GL"] = "disable"
+    try:
+        import mujoco
+        from mujoco.rendering.classic import gl_context
+    finally:
+        os.environ["MUJOCO_GL"] = original
+
+    _answer_gl_context(gl_context, gl_context, wanted)  # mujoco.Renderer's way to its backend
+    _answer_gl_context(mujoco, gl_context, wanted)  # mujoco.GLContext, as an eager import has it
+
+
+def _answer_gl_context(module, gl_context, backend: str) -> None:
+    """Have `module` answer `GLContext`, which it lacks, by installing `backend` (PEP 562: a module's
+    __getattr__ answers the names its namespace lacks)."""
+    def missing(name: str):
+        if name != "GLContext":
+            raise AttributeError(f"module {module.__name__!r} has no attribute {name!r}")
+        return _install_gl(gl_context, backend)
+
+    module.__getattr__ = missing
+
+
+def _install_gl(gl_context, backend: str):
+    """mujoco's GLContext for `backend` (egl or osmesa), set where mujoco.Renderer looks for it; ImportError
+    (as MuJoCo's own placeholder raises it) when the backend cannot be loaded."""
+    try:
+        if backend == "egl":
             from mujoco.egl import GLContext
         else:
             from mujoco.osmesa import GLContext
-    except (ImportError, OSError, RuntimeError):
-        return  # open_renderer reports what is missing
+    except (ImportError, OSError, RuntimeError) as err:
+        raise ImportError(f"Failed to import OpenGL backend (MUJOCO_GL={backend!r}): {err}") from err
     gl_context.GLContext = GLContext
-    gl_context._MUJOCO_GL = wanted
+    gl_context._MUJOCO_GL = backend
+    return GLContext
 
 
 def render_build(build_dir: Path, out: Path, camera: str | None = None, width: int = 800, height: int = 600) -> Path:

@@ -3,7 +3,7 @@ built-in socket and text included (see pyproject.toml). A package adds one the s
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache, lru_cache
 
 from morsec.errors import MorsecError, did_you_mean
 from morsec.middleware.base import Middleware
@@ -14,23 +14,33 @@ ENTRY_POINT_GROUP = "morsec.middlewares"
 
 @lru_cache(maxsize=1)
 def middlewares() -> dict[str, type[Middleware]]:
-    found: dict[str, type[Middleware]] = {}
-    for ep in entry_points_of(ENTRY_POINT_GROUP):
-        cls = ep.load()
-        if not (isinstance(cls, type) and issubclass(cls, Middleware)) or cls.name != ep.name:
-            raise MorsecError(f"entry point {ep.name} = {ep.value}: must name a morsec.middleware.base.Middleware "
-                              f"subclass whose name is {ep.name!r}")
-        found[ep.name] = cls
+    return {name: _load(ep) for name, ep in _registered().items()}
+
+
+@cache
+def middleware(name: str) -> type[Middleware]:
+    """The middleware registered as `name`, its module alone imported: a run imports the middlewares its scene
+    uses, not every one installed."""
+    registered = _registered()
+    if name not in registered:
+        raise MorsecError(f"unknown middleware {name!r}{did_you_mean(name, registered)}")
+    return _load(registered[name])
+
+
+@lru_cache(maxsize=1)
+def _registered() -> dict:
+    found = {ep.name: ep for ep in entry_points_of(ENTRY_POINT_GROUP)}
     if not found:
         raise MorsecError("no middleware is registered: morsec is not installed (pip install -e . in its folder)")
     return found
 
 
-def middleware(name: str) -> type[Middleware]:
-    known = middlewares()
-    if name not in known:
-        raise MorsecError(f"unknown middleware {name!r}{did_you_mean(name, known)}")
-    return known[name]
+def _load(ep) -> type[Middleware]:
+    cls = ep.load()
+    if not (isinstance(cls, type) and issubclass(cls, Middleware)) or cls.name != ep.name:
+        raise MorsecError(f"entry point {ep.name} = {ep.value}: must name a morsec.middleware.base.Middleware "
+                          f"subclass whose name is {ep.name!r}")
+    return cls
 
 
 def service_middlewares() -> tuple[str, ...]:

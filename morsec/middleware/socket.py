@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from morsec.component.services import service
 from morsec.constants import MAX_PORT, SERVICE_PORT, SERVICE_PORT_ATTEMPTS, STREAM_PORT_BASE
@@ -21,6 +21,7 @@ class Socket(Middleware):
     description = "MORSE's socket protocol: JSON lines on a TCP port per stream, services on port 4000"
 
     class Options(BaseModel):
+        model_config = ConfigDict(defer_build=True)  # read by a build, not by a run
         port: Annotated[int, Field(ge=1, le=65535)] | None = Field(
             None, description="socket: TCP port (default: allocated from 60000 in alphabetical order of names)")
 

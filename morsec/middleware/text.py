@@ -9,7 +9,7 @@ import logging
 from pathlib import Path, PurePosixPath
 from typing import Annotated, Any, Literal
 
-from pydantic import AfterValidator, BaseModel, Field
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field
 
 from morsec.errors import RuntimeFailure
 from morsec.middleware.base import Middleware, StreamRequest
@@ -38,6 +38,7 @@ class Text(Middleware):
     description = "each message of a sensor appended to a file: key = value blocks, or CSV"
 
     class Options(BaseModel):
+        model_config = ConfigDict(defer_build=True)  # read by a build, not by a run
         file: Annotated[str, AfterValidator(check_output_file)] | None = Field(
             None, description="text: output file, relative to the run's output folder (default from the component "
             "name)")

@@ -9,7 +9,8 @@ from pydantic import BaseModel, ConfigDict
 
 
 class ModifierParams(BaseModel):
-    model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
+    # built on first use: a run builds the validators of the modifiers its scene uses only
+    model_config = ConfigDict(extra="forbid", allow_inf_nan=False, defer_build=True)
 
 
 class Modifier:

@@ -9,7 +9,7 @@ import importlib.util
 import os
 from typing import Any
 
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from morsec.middleware.base import Middleware, StreamRequest
 from morsec.middleware.ros.available import require_ros, ros_folder, ros_problem
@@ -40,6 +40,7 @@ class Ros(Middleware):
     carries_services = True
 
     class Options(BaseModel):
+        model_config = ConfigDict(defer_build=True)  # read by a build, not by a run
         child_frame_id: str | None = Field(
             None, description="ros: the moving frame of an odometry or tf stream (default MORSE's: /base_footprint, "
             "/base_link)")
