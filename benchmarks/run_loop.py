@@ -129,7 +129,10 @@ def callgrind_frames(build: Path, side: str, duration: float) -> int:
                 # Under valgrind, MuJoCo's MJCF reader now and then rejects a number of a large scene ("XML
                 # Error: unknown error in attribute 'quat'"), depending on the process's memory layout: tried
                 # again with an environment of another size
-                env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "RUN_LOOP_PADDING": "x" * (64 * attempt)}
+                # A fixed PYTHONHASHSEED: with random string hashes, dicts and sets differ from one process to the
+                # next, and so do the instructions of each (by 0.5% of a frame's, run to run); fixed, by 0.001%
+                env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONHASHSEED": "0",
+                       "RUN_LOOP_PADDING": "x" * (64 * attempt)}
                 result = subprocess.run(cmd, capture_output=True, text=True, env=env)
                 if result.returncode == 0 or "XML Error" not in result.stderr:
                     break
