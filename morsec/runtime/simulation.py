@@ -205,6 +205,8 @@ class Simulation:
             self._handles = list(handles.values())
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
+            self._contact_pairs = b""  # the contacts' geom pairs (bytes) last looked at, and the robots touching
+            self._contact_touching: set[int] = set()
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
         except Unsupported:  # its line names the component's own file and line
             self.poller.close()
@@ -480,17 +482,22 @@ class Simulation:
     # ---------------------------------------------------------------- queries used by components
     def touching(self) -> set[int]:
         """The robots (their index in self.robots) that touch something not part of them in the contacts
-        MuJoCo found last: found once for all robots until the contacts change."""
+        MuJoCo found last: found once for all robots until the contacts change (the same geom pairs as the
+        last time they were looked at: the same robots, found again only when they differ)."""
         if self._touching is None:
-            touching = set()
-            if self.data.ncon:
+            geoms = self.data.contact.geom
+            pairs = geoms.tobytes()  # cheaper than tolist, and all a robot resting or driving on needs
+            if pairs != self._contact_pairs:
+                self._contact_pairs = pairs
+                touching = set()
                 owner = self._geom_robot
-                for first, second in self.data.contact.geom.tolist():  # ncon of them, a few a robot: no numpy
+                for first, second in geoms.tolist():  # ncon of them, a few a robot: no numpy
                     if owner[first] != owner[second]:
                         touching.add(owner[first])
                         touching.add(owner[second])
                 touching.discard(-1)  # a geom of no robot
-            self._touching = touching
+                self._contact_touching = touching
+            self._touching = self._contact_touching
         return self._touching
 
     def objects_with(self, tag: str) -> list[SceneObject]:
