@@ -1,7 +1,12 @@
 import math
 
 from morsec.component import DataField, Level, Sensor
-from morsec.kits.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
+from morsec.kits.geometry import (
+    euler_of_transpose_times,
+    normalize_angle,
+    transpose_apply,
+    transpose_times,
+)
 from morsec.modifiers.noise import OdometryNoise, PoseNoise
 
 
@@ -70,8 +75,8 @@ class Odometry(Sensor):
         prev_pos, prev_rot, pos, rot = self.advance()
         dx, dy, dz = transpose_apply(self.origin_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1],
                                                         pos[2] - prev_pos[2]))
-        r0, p0, y0 = euler_of_xmat(transpose_times(self.origin_rot, prev_rot))
-        r1, p1, y1 = euler_of_xmat(transpose_times(self.origin_rot, rot))
+        r0, p0, y0 = euler_of_transpose_times(self.origin_rot, prev_rot)
+        r1, p1, y1 = euler_of_transpose_times(self.origin_rot, rot)
         self.local_data.update(dx=dx, dy=dy, dz=dz, dyaw=normalize_angle(y1 - y0),
                                dpitch=normalize_angle(p1 - p0), droll=normalize_angle(r1 - r0))
 
@@ -89,12 +94,13 @@ class IntegratedOdometry(Odometry):
         pos, rot = self.xpos.tolist(), self.xmat.tolist()
         self.previous_pos, self.previous_rot = pos, rot
         o, origin_rot = self.origin_pos, self.origin_rot
-        x, y, z = transpose_apply(origin_rot, (pos[0] - o[0], pos[1] - o[1], pos[2] - o[2]))
-        roll, pitch, yaw = euler_of_xmat(transpose_times(origin_rot, rot))
+        px, py, pz = pos
+        x, y, z = transpose_apply(origin_rot, (px - o[0], py - o[1], pz - o[2]))
+        roll, pitch, yaw = euler_of_transpose_times(origin_rot, rot)
         # velocities: the previous->current transform in the previous sensor frame, times the nominal rate
         f = self.frequency
-        vx, vy, vz = transpose_apply(prev_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1], pos[2] - prev_pos[2]))
-        d_roll, d_pitch, d_yaw = euler_of_xmat(transpose_times(prev_rot, rot))
+        vx, vy, vz = transpose_apply(prev_rot, (px - prev_pos[0], py - prev_pos[1], pz - prev_pos[2]))
+        d_roll, d_pitch, d_yaw = euler_of_transpose_times(prev_rot, rot)
         local = self.local_data
         local["x"], local["y"], local["z"] = x, y, z
         local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
