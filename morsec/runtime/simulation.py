@@ -19,6 +19,7 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
+from morsec.component.contract import SampledSensor
 from morsec.constants import MAX_SPEED, PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
 from morsec.errors import MorsecError, RuntimeFailure, Unsupported
 from morsec.middleware.base import Middleware, RunContext
@@ -99,6 +100,8 @@ class ComponentRuntime:
     echoes: list = field(default_factory=list)  # streams shown the commands its in_streams bring (--foxglove)
     modifiers: list = field(default_factory=list)
     recording: Any = None  # an actuator's tap in the recording, if one is made: the commands it takes
+    # a SampledSensor's local_data dict itself: its timestamp written there computes nothing (local_data would)
+    stamp: dict | None = None
     active: bool = True
     stopped: bool = False
     errors: set = field(default_factory=set)
@@ -340,6 +343,7 @@ class Simulation:
                                      self.rng_for(entry.fqn, k, spec.name), self))
         return ComponentRuntime(
             fqn=entry.fqn, parent=entry.parent, robot=entry.robot, kind=entry.kind, instance=instance,
+            stamp=instance.local_dict if isinstance(instance, SampledSensor) else None,
             schedule=Periodic(entry.frequency, self.clock.dt),
             defaults=[(f.name, f.default) for f in impl.fields_at(entry.level)],
             streams=[(s.middleware, s.direction) for s in streams],
@@ -882,7 +886,7 @@ class Simulation:
 
     def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
         inst = comp.instance
-        inst.local_data["timestamp"] = now
+        (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
         try:
             inst.default_action()
             for modifier in comp.modifiers:
