@@ -62,7 +62,7 @@ class Poller:
         handlers = self.handlers
         if not handlers:
             return
-        ready = self._wait(max(timeout, 0.0))
+        ready = self._wait(timeout if timeout > 0.0 else 0.0)
         if ready:
             self.polls += 1
             # every ready socket's handler, as found before any runs (one may unregister another)

@@ -38,15 +38,15 @@ class Clock:
         return self.origin + self.elapsed
 
     def tick(self) -> None:
-        self.frames += 1
-        self.elapsed = self.frames * self.dt
+        frames = self.frames = self.frames + 1
+        self.elapsed = frames * self.dt
         wall = _time.perf_counter()
         sample = wall - self._last_wall
         self._last_wall = wall
-        self._n += 1
+        n = self._n = self._n + 1
         delta = sample - self._mean
-        self._mean += delta / self._n
-        self._m2 += delta * (sample - self._mean)
+        mean = self._mean = self._mean + delta / n
+        self._m2 += delta * (sample - mean)
 
     def delay(self, paced: bool = False) -> float:
         """Wall-clock seconds to wait before the next frame: 0 for fixed_step, unless `paced` (a client is

@@ -15,7 +15,6 @@ from morsec.kits.geometry import (
     matrix_to_quat,
     quat_to_matrix,
     times_transpose,
-    transpose_apply,
     transpose_times,
 )
 
@@ -407,10 +406,13 @@ def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[fl
     sin = math.sqrt(vx * vx + vy * vy + vz * vz)
     angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)
     wz = vz * (angle / sin) if sin > 1e-12 else vz
-    moved = (pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2])
-    m0, m1 = transpose_apply(rot0, moved), transpose_apply(rot1, moved)
-    # the linear velocity in the frame half-way through
-    return (m0[0] + m1[0]) / 2.0 / dt, (m0[1] + m1[1]) / 2.0 / dt, wz / dt
+    x, y, z = pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2]
+    # the linear velocity in the frame half-way through: the mean of the displacement in the frames at both ends
+    # (transpose_apply's x and y, written out: z is not needed)
+    a0, a1, _, a3, a4, _, a6, a7, _ = rot0
+    b0, b1, _, b3, b4, _, b6, b7, _ = rot1
+    return (((a0 * x + a3 * y + a6 * z) + (b0 * x + b3 * y + b6 * z)) / 2.0 / dt,
+            ((a1 * x + a4 * y + a7 * z) + (b1 * x + b4 * y + b7 * z)) / 2.0 / dt, wz / dt)
 
 
 def _descends(m, body: int, ancestor: int) -> bool:

@@ -733,7 +733,9 @@ class Simulation:
                         self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 self.answer()
                 self._flush()
-                self._wait(self._delay())
+                delay = self._delay()
+                if delay > 0:
+                    self._wait(delay)
         finally:
             if started is not None:
                 self.loop_wall_time = time.perf_counter() - started
@@ -773,8 +775,11 @@ class Simulation:
     def answer(self) -> None:
         """The end of a frame, after its messages: the sleeps that ended at it answered, the components'
         asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time)."""
-        self.time_services.wake()
-        self.requests.start_waiting(self.clock.frames)
+        time_services, requests = self.time_services, self.requests
+        if time_services.sleepers or time_services.deferred:  # else nothing to wake (usually, at every frame)
+            time_services.wake()
+        if requests.waiting:
+            requests.start_waiting(self.clock.frames)
 
     def step(self) -> None:
         m, d = self.model, self.data
@@ -807,16 +812,17 @@ class Simulation:
         for handle in handles:
             if handle.ticks and handle.sample_tick_end():
                 sampled = True
-        self.clock.tick()
-        t = self.clock.elapsed
-        due = [c for c in self.sensors if c.active and (c.schedule.every_frame or c.schedule.due(t))]
-        if due:
-            mujoco.mj_kinematics(m, d)
-            if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
-                mujoco.mj_comPos(m, d)
-                mujoco.mj_comVel(m, d)
-            now = self.clock.now()
-            for comp in due:
+        clock = self.clock
+        clock.tick()
+        t, now = clock.elapsed, None
+        for comp in self.sensors:
+            if comp.active and (comp.schedule.every_frame or comp.schedule.due(t)):
+                if now is None:  # the first sensor due: the kinematics of the state the physics left, once
+                    mujoco.mj_kinematics(m, d)
+                    if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
+                        mujoco.mj_comPos(m, d)
+                        mujoco.mj_comVel(m, d)
+                    now = clock.now()
                 self._tick_sensor(comp, now)
 
     def _physics(self, m, d) -> None:
@@ -847,6 +853,8 @@ class Simulation:
         client whose sleep ended reads this frame's data with `last()`. Sensors created last send first, as
         MORSE ran the logic of the object created last first: a client reading one stream with `get()` then
         another with `last()` finds both."""
+        if not self.outbox:  # no stream has a reader
+            return
         outbox, self.outbox = self.outbox, []
         for streams, message in reversed(outbox):
             for stream in streams:
@@ -958,7 +966,7 @@ class Stability:
         self.remember()
         # a view of MuJoCo's three counters of bad values (they follow one another): reading it costs nothing
         self.numbers = data.warning.number[self.BAD_QPOS:self.BAD_QACC + 1]
-        self.warnings = self._count()
+        self.warnings = self.numbers.tolist()  # as last seen: a frame that changes them made MuJoCo warn
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
         for j in range(model.njnt):
             end = model.jnt_qposadr[j + 1] if j + 1 < model.njnt else model.nq
@@ -966,16 +974,13 @@ class Stability:
         self.dof_root = model.body_rootid[model.dof_bodyid].astype(int)
         self.reported: set[int] = set()
 
-    def _count(self) -> int:
-        return sum(self.numbers.tolist())
-
     def remember(self) -> None:
         mujoco.mj_getState(self.model, self.data, self.state, self.spec)
 
     def check(self, model, data) -> None:
-        count = self._count()
-        if count != self.warnings:
-            self.warnings = count
+        warnings = self.numbers.tolist()
+        if warnings != self.warnings:
+            self.warnings = warnings
             self.recover(model, data)
 
     def recover(self, model, data) -> None:
