@@ -1,10 +1,11 @@
-"""SampledSensor (the pose and odometry sensors): a tick only samples, local_data is computed when read,
+"""SampledSensor (the pose, odometry and laser scanner sensors): a tick only samples, local_data is computed when read,
 and whatever reads it, whenever, gets what computing it at every tick would have given, to the bit."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from morsec.app.project import build_scene
@@ -13,7 +14,7 @@ from morsec.runtime.simulation import RunOptions, Simulation
 
 SCENE = """\
 environment:
-  name: empty
+  name: indoors-1/boxes
   time: {strategy: fixed_step, frequency: 60, relative: true}
 robots:
   - name: robot
@@ -24,9 +25,11 @@ robots:
       - {name: odo_raw, type: odometry, level: raw, streams: [socket]}
       - {name: odo_diff, type: odometry, level: differential, streams: [socket]}
       - {name: odo_int, type: odometry, level: integrated, streams: [socket]}
+      - {name: sick, type: sick, translate: [0.5, 0.0, 0.4], frequency: 20, streams: [socket]}
+      - {name: rssi, type: sick, level: rssi, translate: [0.5, 0.0, 0.4], frequency: 20, streams: [socket]}
       - {name: motion, type: motion_vw, streams: [socket]}
 """
-SENSORS = ("robot.pose", "robot.odo_raw", "robot.odo_diff", "robot.odo_int")
+SENSORS = ("robot.pose", "robot.odo_raw", "robot.odo_diff", "robot.odo_int", "robot.sick", "robot.rssi")
 COMMANDS = {5: (1.0, 0.4), 60: (-0.5, -1.0), 120: (1.5, 0.0), 150: (0.0, 2.0)}  # frame: (v, w)
 
 
@@ -49,7 +52,9 @@ def drive(build: Path, read_every: int) -> dict[int, dict[str, dict]]:
             sim.frame()
             sim.answer()
             if frame % read_every == 0:
-                read[frame] = {fqn: dict(sim.by_name[fqn].instance.local_data) for fqn in SENSORS}
+                read[frame] = {fqn: {key: value.tolist() if isinstance(value, np.ndarray) else value
+                                     for key, value in sim.by_name[fqn].instance.local_data.items()}
+                               for fqn in SENSORS}
         return read
     finally:
         sim.close()
@@ -63,6 +68,8 @@ def test_data_read_now_and_then_is_the_data_computed_at_every_tick(build):
         assert data == every_tick[frame], frame  # ==: the same floats
     moved = every_tick[179]["robot.odo_int"]
     assert abs(moved["x"]) > 0.5 and abs(moved["yaw"]) > 0.1  # the robot drove and turned: data that changes
+    ranges = [data["robot.sick"]["range_list"] for data in every_tick.values()]
+    assert min(map(min, ranges)) < 30.0 and len({tuple(r) for r in ranges}) > 10  # walls seen, scans that differ
 
 
 def test_a_tick_nobody_reads_computes_nothing(build):
