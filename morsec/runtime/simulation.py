@@ -904,12 +904,15 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
+        listening = None  # the streams with a reader, each asked once
         for stream in comp.out_streams:
             if stream.listening:
-                break
-        else:
-            return  # no stream has a reader: no message built (local_data, computed above, stays readable)
-        listening = [stream for stream in comp.out_streams if stream.listening]
+                if listening is None:
+                    listening = [stream]
+                else:
+                    listening.append(stream)
+        if listening is None:
+            return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         if message is not None:
             self.outbox.append((listening, message))
