@@ -22,14 +22,15 @@ with every component deactivated, and the components' ticks) and the real-time f
 also counts instructions (valgrind's callgrind, which machine load does not change): each side runs in a
 child process twice, for --callgrind-duration (2 simulated s; 0.25 for the fleet, whose frames cost 1e9
 instructions each) and for twice as long, and the difference is the instructions of that many frames
-(start-up cancels out), with one OpenBLAS thread (see callgrind_frames).
+(start-up cancels out), with one OpenBLAS thread and PYTHONHASHSEED=0 (see callgrind_frames).
 
-Instructions per frame measured last (docs/running.md#performance): reference 1.24, sensors 1.33, fleet
+Instructions per frame measured last (docs/running.md#performance): reference 1.13, sensors 1.23, fleet
 1.01. The first two stay above target: what is left is the Python each tick needs for MORSE's results
-(motion_vw's ground friction and trim, the ground-contact check, odometry, pose, the loop: ~180k
-instructions a frame for the reference scene, at ~70 instructions per bytecode on pyenv's CPython 3.11
-without PGO), plus the Sick's ray casting in the sensors scene; skipping sensors nobody reads would change
-what get_local_data, recordings and the noise modifiers' draws give.
+(motion_vw's trim of a held command and ground friction, the ground-contact check, the loop: ~100k
+instructions a frame for the reference scene, where a Python call costs 300-500 instructions on pyenv's
+CPython 3.11 without PGO), plus the Sick's ray casting in the sensors scene. The pose, odometry and laser
+scanner sensors compute their data when it is read (SampledSensor): with no client, their ticks only sample.
+Counts move by up to 1% with the heap's layout (any change of code shifts where MuJoCo's arrays fall).
 """
 
 from __future__ import annotations
