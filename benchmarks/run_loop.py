@@ -24,7 +24,7 @@ child process twice, for --callgrind-duration (2 simulated s; 0.25 for the fleet
 instructions each) and for twice as long, and the difference is the instructions of that many frames
 (start-up cancels out), with one OpenBLAS thread and PYTHONHASHSEED=0 (see callgrind_frames).
 
-Instructions per frame measured last (docs/running.md#performance): reference 1.13, sensors 1.23, fleet
+Instructions per frame measured last (docs/running.md#performance): reference 1.14, sensors 1.24, fleet
 1.01. The first two stay above target: what is left is the Python each tick needs for MORSE's results
 (motion_vw's trim of a held command and ground friction, the ground-contact check, the loop: ~100k
 instructions a frame for the reference scene, where a Python call costs 300-500 instructions on pyenv's
