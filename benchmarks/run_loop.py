@@ -22,14 +22,15 @@ with every component deactivated, and the components' ticks) and the real-time f
 also counts instructions (valgrind's callgrind, which machine load does not change): each side runs in a
 child process twice, for --callgrind-duration (2 simulated s; 0.25 for the fleet, whose frames cost 1e9
 instructions each) and for twice as long, and the difference is the instructions of that many frames
-(start-up cancels out), with one OpenBLAS thread (see callgrind_frames).
+(start-up cancels out), with one OpenBLAS thread and PYTHONHASHSEED=0 (see callgrind_frames).
 
-Instructions per frame measured last (docs/running.md#performance): reference 1.24, sensors 1.33, fleet
+Instructions per frame measured last (docs/running.md#performance): reference 1.14, sensors 1.24, fleet
 1.01. The first two stay above target: what is left is the Python each tick needs for MORSE's results
-(motion_vw's ground friction and trim, the ground-contact check, odometry, pose, the loop: ~180k
-instructions a frame for the reference scene, at ~70 instructions per bytecode on pyenv's CPython 3.11
-without PGO), plus the Sick's ray casting in the sensors scene; skipping sensors nobody reads would change
-what get_local_data, recordings and the noise modifiers' draws give.
+(motion_vw's trim of a held command and ground friction, the ground-contact check, the loop: ~100k
+instructions a frame for the reference scene, where a Python call costs 300-500 instructions on pyenv's
+CPython 3.11 without PGO), plus the Sick's ray casting in the sensors scene. The pose, odometry and laser
+scanner sensors compute their data when it is read (SampledSensor): with no client, their ticks only sample.
+Counts move by up to 1% with the heap's layout (any change of code shifts where MuJoCo's arrays fall).
 """
 
 from __future__ import annotations
@@ -129,7 +130,10 @@ def callgrind_frames(build: Path, side: str, duration: float) -> int:
                 # Under valgrind, MuJoCo's MJCF reader now and then rejects a number of a large scene ("XML
                 # Error: unknown error in attribute 'quat'"), depending on the process's memory layout: tried
                 # again with an environment of another size
-                env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "RUN_LOOP_PADDING": "x" * (64 * attempt)}
+                # A fixed PYTHONHASHSEED: with random string hashes, dicts and sets differ from one process to the
+                # next, and so do the instructions of each (by 0.5% of a frame's, run to run); fixed, by 0.001%
+                env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONHASHSEED": "0",
+                       "RUN_LOOP_PADDING": "x" * (64 * attempt)}
                 result = subprocess.run(cmd, capture_output=True, text=True, env=env)
                 if result.returncode == 0 or "XML Error" not in result.stderr:
                     break

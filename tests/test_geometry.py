@@ -6,7 +6,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from morsec.kits.geometry import euler_to_quat, quat_to_matrix, times_transpose, transpose_apply, transpose_times
+from morsec.kits.geometry import (
+    euler_of_transpose_times,
+    euler_of_xmat,
+    euler_to_quat,
+    quat_to_matrix,
+    times_transpose,
+    transpose_apply,
+    transpose_times,
+)
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -21,3 +29,22 @@ def test_products_of_row_major_lists_are_numpys(angles):
     assert times_transpose(flat_a, flat_b) == pytest.approx((a @ b.T).ravel().tolist(), abs=1e-12)
     v = [0.3, -2.0, 1.1]
     assert transpose_apply(flat_a, v) == pytest.approx((a.T @ v).tolist(), abs=1e-12)
+
+
+def test_euler_of_a_relative_rotation_is_euler_of_xmat_of_the_product_to_the_bit():
+    """Odometry's shortcut computes only the entries of Aᵀ B that euler_of_xmat reads: the same floats, in gimbal
+    lock (pitch +-90 degrees), past 3 pi / 2 (the second triple) and anywhere else."""
+    rng = np.random.default_rng(7)
+    cases = [((0.0, 0.0, 0.0), (0.0, np.pi / 2, 0.3)), ((0.2, 0.0, 0.0), (0.2, -np.pi / 2, -1.0)),
+             ((0.0, 0.0, 0.0), (3.0, 0.1, 3.0)), ((0.0, 0.0, 0.0), (0.0, np.pi, 0.0)),
+             ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))]
+    cases += [(tuple(rng.uniform(-np.pi, np.pi, 3)), tuple(rng.uniform(-np.pi, np.pi, 3))) for _ in range(500)]
+    locked = second = 0
+    for first_angles, second_angles in cases:
+        a, b = rotation(*first_angles).ravel().tolist(), rotation(*second_angles).ravel().tolist()
+        product = transpose_times(a, b)
+        expected = euler_of_xmat(product)
+        assert euler_of_transpose_times(a, b) == expected  # ==: the same floats, not approximately
+        locked += np.hypot(product[0], product[3]) <= 16 * 1.1920929e-07
+        second += abs(expected[1]) > np.pi / 2  # the second triple: pitch beyond +-90 degrees
+    assert locked and second  # both rarer paths were taken

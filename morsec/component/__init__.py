@@ -16,6 +16,7 @@ from morsec.component.contract import (
                                        Prop,
                                        Robot,
                                        RobotProperties,
+                                       SampledSensor,
                                        Sensor,
 )
 from morsec.component.fields import FIELD_TYPES
@@ -30,6 +31,5 @@ from morsec.component.services import ServiceInfo, async_service, service
 
 __all__ = ["Actuator", "Component", "ComponentProperties", "ComputationModeProperties", "ControlTypeProperties",
            "DataField", "Device", "Environment", "FIELD_TYPES", "GeomagneticDateProperties", "Level", "Prop", "Robot",
-           "RobotProperties", "RotorcraftProperties", "Sensor", "ServiceInfo", "WheeledRobotProperties",
-           "async_service",
-           "component_class", "service"]
+           "RobotProperties", "RotorcraftProperties", "SampledSensor", "Sensor", "ServiceInfo",
+           "WheeledRobotProperties", "async_service", "component_class", "service"]

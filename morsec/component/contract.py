@@ -275,6 +275,40 @@ class Sensor(Device):
         return self.local_data
 
 
+class SampledSensor(Sensor):
+    """A sensor whose data at a tick follows from a few numbers read at that tick, its sample (a pose; the
+    previous one too), by arithmetic that costs far more than reading them (Euler angles, changes of frame).
+    Its tick only takes the sample; `local_data` is computed from the last sample when something reads it (a
+    stream with a reader, a service, a modifier, a recording, another component): the same data as if
+    computed at every tick, at no cost for the ticks nobody reads. A subclass implements `sample()` (read at
+    every tick) and `compute(*sample)` (fills local_data), and its data must follow from the last sample
+    alone, never from what earlier ticks computed (those may never be computed)."""
+
+    _sample: tuple | None = None  # the last tick's sample, while local_data is not computed from it yet
+
+    @property  # type: ignore[override]
+    def local_data(self) -> OrderedDict[str, Any]:
+        if self._sample is not None:
+            sample, self._sample = self._sample, None
+            self.compute(*sample)
+        return self.local_dict
+
+    @local_data.setter
+    def local_data(self, value: OrderedDict[str, Any]) -> None:
+        self.local_dict = value  # the dict itself: the loop writes the timestamp in it, computing nothing
+
+    def default_action(self) -> None:
+        self._sample = self.sample()
+
+    def sample(self) -> tuple:
+        """What local_data at this tick is computed from (read from MuJoCo at the tick)."""
+        raise NotImplementedError
+
+    def compute(self, *sample: Any) -> None:
+        """Fill local_data from a sample."""
+        raise NotImplementedError
+
+
 class Actuator(Device):
     kind = "actuator"
     direction = "IN"

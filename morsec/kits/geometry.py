@@ -76,6 +76,7 @@ def fmt_vec(values) -> str:
 # Below this, cos(pitch) is taken for 0 (pitch +-90 degrees): Blender's threshold, 16 float epsilons
 GIMBAL_LOCK = 16 * 1.1920929e-07
 _HALF_THREE_PI = 1.5 * math.pi - 1e-9  # below it, rounding cannot make the two sums compare otherwise
+_atan2, _hypot = math.atan2, math.hypot  # module globals: a little cheaper than math's attributes, per frame
 
 
 def euler_of_xmat(m) -> tuple[float, float, float]:
@@ -84,19 +85,41 @@ def euler_of_xmat(m) -> tuple[float, float, float]:
     pitch beyond it with roll and yaw turned by pi), the one with the smaller sum of absolute angles (the
     first on a tie). A rotation of pi about y reads (0, pi, 0), not (pi, 0, pi). In gimbal lock (pitch
     +-90 degrees) the rest of the rotation goes in roll and yaw is 0."""
-    r00, r10, r20, r21, r22 = m[0], m[3], m[6], m[7], m[8]
-    cy = math.hypot(r00, r10)
+    r00, r10, r20 = m[0], m[3], m[6]
+    cy = _hypot(r00, r10)
     if cy <= GIMBAL_LOCK:
-        return math.atan2(-m[5], m[4]), math.atan2(-r20, cy), 0.0
-    first = (math.atan2(r21, r22), math.atan2(-r20, cy), math.atan2(r10, r00))
+        return _atan2(-m[5], m[4]), _atan2(-r20, cy), 0.0
+    return _euler_unlocked(r00, r10, r20, m[7], m[8], cy)
+
+
+def euler_of_transpose_times(a, b) -> tuple[float, float, float]:
+    """euler_of_xmat(transpose_times(a, b)), the same to the bit: only the entries of Aᵀ B it reads are
+    computed (5 of 9, 7 in gimbal lock). Odometry takes two such relative rotations at every tick."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = a
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = b
+    r00 = a0 * b0 + a3 * b3 + a6 * b6
+    r10 = a1 * b0 + a4 * b3 + a7 * b6
+    r20 = a2 * b0 + a5 * b3 + a8 * b6
+    cy = _hypot(r00, r10)
+    if cy <= GIMBAL_LOCK:
+        r11, r12 = a1 * b1 + a4 * b4 + a7 * b7, a1 * b2 + a4 * b5 + a7 * b8
+        return _atan2(-r12, r11), _atan2(-r20, cy), 0.0
+    return _euler_unlocked(r00, r10, r20, a2 * b1 + a5 * b4 + a8 * b7, a2 * b2 + a5 * b5 + a8 * b8, cy)
+
+
+def _euler_unlocked(r00: float, r10: float, r20: float, r21: float, r22: float,
+                    cy: float) -> tuple[float, float, float]:
+    """euler_of_xmat out of gimbal lock, from the entries it reads and cy = hypot(r00, r10)."""
+    roll, pitch, yaw = _atan2(r21, r22), _atan2(-r20, cy), _atan2(r10, r00)
     # each angle of the second triple is pi less the first's in absolute value: its sum is 3 pi less the
     # first's, the larger one when the first's is clearly below 3 pi / 2 (no need to compute it then)
-    if abs(first[0]) + abs(first[1]) + abs(first[2]) < _HALF_THREE_PI:
-        return first
-    second = (math.atan2(-r21, -r22), math.atan2(-r20, -cy), math.atan2(-r10, -r00))
-    if abs(first[0]) + abs(first[1]) + abs(first[2]) > abs(second[0]) + abs(second[1]) + abs(second[2]):
+    first = abs(roll) + abs(pitch) + abs(yaw)
+    if first < _HALF_THREE_PI:
+        return roll, pitch, yaw
+    second = (_atan2(-r21, -r22), _atan2(-r20, -cy), _atan2(-r10, -r00))
+    if first > abs(second[0]) + abs(second[1]) + abs(second[2]):
         return second
-    return first
+    return roll, pitch, yaw
 
 
 def transpose_times(a, b) -> list[float]:

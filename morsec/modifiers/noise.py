@@ -93,10 +93,13 @@ class IMUNoise(GaussianNoise):
         self.stds = [_std(p.gyro_std, a) for a in "xyz"] + [_std(p.accel_std, a) for a in "xyz"]
 
     def modify(self, data: dict) -> None:
-        noise = self.draw()
-        for field, n in (("angular_velocity", noise[:3]), ("linear_acceleration", noise[3:])):
-            if field in data:
-                data[field] = [float(v) + e for v, e in zip(data[field], n)]
+        n0, n1, n2, n3, n4, n5 = self.draw()  # written out: the IMU ticks every frame
+        if "angular_velocity" in data:
+            x, y, z = data["angular_velocity"]
+            data["angular_velocity"] = [float(x) + n0, float(y) + n1, float(z) + n2]
+        if "linear_acceleration" in data:
+            x, y, z = data["linear_acceleration"]
+            data["linear_acceleration"] = [float(x) + n3, float(y) + n4, float(z) + n5]
 
 
 class OdometryNoiseParams(ModifierParams):

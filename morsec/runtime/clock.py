@@ -24,6 +24,7 @@ class Clock:
         self.scale = time_scale(scale)
         self.origin = 0.0 if relative else _time.time()
         self.frames = 0
+        self.elapsed = 0.0  # simulated seconds since the start: frames * dt (an attribute: read many times a frame)
         self._wall_anchor = _time.perf_counter()
         self._sim_anchor = 0.0
         self._last_wall = self._wall_anchor
@@ -32,24 +33,20 @@ class Clock:
         self._mean = 0.0
         self._m2 = 0.0
 
-    @property
-    def elapsed(self) -> float:
-        """Simulated seconds since the start."""
-        return self.frames * self.dt
-
     def now(self) -> float:
         """The timestamp sensors publish: epoch-based unless relative time was asked for."""
         return self.origin + self.elapsed
 
     def tick(self) -> None:
-        self.frames += 1
+        frames = self.frames = self.frames + 1
+        self.elapsed = frames * self.dt
         wall = _time.perf_counter()
         sample = wall - self._last_wall
         self._last_wall = wall
-        self._n += 1
+        n = self._n = self._n + 1
         delta = sample - self._mean
-        self._mean += delta / self._n
-        self._m2 += delta * (sample - self._mean)
+        mean = self._mean = self._mean + delta / n
+        self._m2 += delta * (sample - mean)
 
     def delay(self, paced: bool = False) -> float:
         """Wall-clock seconds to wait before the next frame: 0 for fixed_step, unless `paced` (a client is

@@ -15,7 +15,6 @@ from morsec.kits.geometry import (
     matrix_to_quat,
     quat_to_matrix,
     times_transpose,
-    transpose_apply,
     transpose_times,
 )
 
@@ -79,8 +78,10 @@ class RobotHandle:
         self.bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
         self._masses = m.body_mass[self.bodies].copy()
         self.index = -1  # its place among the simulation's robots (see Simulation.touching)
-        # views of its base's world position and row-major rotation in MjData (whose arrays stay put)
+        # views of its base's world position and row-major rotation in MjData (whose arrays stay put), and of the
+        # controls its base servos read
         self._xpos, self._xmat = sim.data.xpos[self.body_id], sim.data.xmat[self.body_id]
+        self._ctrl = sim.data.ctrl
 
     def _base_qvel(self) -> np.ndarray:
         """The free joint's 6 velocities in qvel, a view: writing it sets the robot's velocity."""
@@ -112,8 +113,9 @@ class RobotHandle:
                 # what MORSE's ground friction left of the command over the period (kits.ground_friction)
                 planar = ground_friction.turned(linear[0], linear[1], angular[2],
                                                 self._slide(linear[0], linear[1], frequency))
-            ctrl, (vx, vy, wz) = d.ctrl, self.follow("base servos", planar)
-            ctrl[self.servo[0]], ctrl[self.servo[1]], ctrl[self.servo[2]] = vx, vy, wz  # cheaper than a slice
+            vx, vy, wz = self._follow_floats("base servos", *planar)
+            ctrl, servo = self._ctrl, self.servo
+            ctrl[servo[0]], ctrl[servo[1]], ctrl[servo[2]] = vx, vy, wz  # cheaper than a slice
             if self.free and self.ground and self._follow["base servos"].held == 0:
                 # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
                 # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
@@ -147,9 +149,9 @@ class RobotHandle:
         frame, that the ground's friction (on the ground) and Bullet's damping then slow down."""
         self._slid = None
         on_ground = self._on_ground()
-        mu = ground_friction.ground_friction(self.friction) if on_ground else 0.0
-        key = (vx, vy, mu, frequency, self.sim.clock.frequency, self.damping)
-        if self._last_slide is None or self._last_slide[0] != key:
+        key = (vx, vy, on_ground, self.friction, frequency, self.damping)  # all mu and the slide depend on
+        if self._last_slide is None or self._last_slide[0] != key:  # (the clock's frequency never changes)
+            mu = ground_friction.ground_friction(self.friction) if on_ground else 0.0
             slid = ground_friction.slide(vx, vy, mu, self._gravity, 1.0 / frequency,
                                          1.0 / self.sim.clock.frequency, self.damping)
             # ticks that end at the held speed leave it as it is (sample_tick_end): none to keep then
@@ -228,14 +230,20 @@ class RobotHandle:
     TRIM_GAIN = 0.5  # the part of the last interval's error added to the trim at each call
     TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + fraction |command| (a robot held by a wall stays gentle)
 
-    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> tuple[float, ...]:
+    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> tuple[float, float, float]:
         """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
         vertical for a ground robot): the command plus its trim. `key` names who drives (one trim each);
         the trim along an axis is dropped when the command changes direction there, all when teleported.
         It is corrected once the command has been held `settle` calls (what a robot still speeding up
-        misses is no slip: counted, it would wind the trim up). In plain floats: this runs at every tick of
-        every robot driven so, and numpy on 3-vectors costs more than the arithmetic."""
-        c0, c1, c2 = command = tuple(map(float, command))
+        misses is no slip: counted, it would wind the trim up)."""
+        c0, c1, c2 = command
+        return self._follow_floats(key, float(c0), float(c1), float(c2), fraction, settle)
+
+    def _follow_floats(self, key: str, c0: float, c1: float, c2: float, fraction: float = 0.25,
+                       settle: int = 2) -> tuple[float, float, float]:
+        """follow, the command given as floats. In plain floats: this runs at every tick of every robot
+        driven so, and numpy on 3-vectors costs more than the arithmetic (so do min and max, written out)."""
+        command = (c0, c1, c2)
         state = self._follow.get(key)
         if state is None:
             state = self._follow[key] = _Follow()
@@ -252,15 +260,21 @@ class RobotHandle:
                 t2 = t2 if _sign(c2) == _sign(p2) else 0.0
                 state.trim = (t0, t1, t2)
             return c0 + t0, c1 + t1, c2 + t2
-        state.held += 1
+        held = state.held = state.held + 1
         dt = now[0] - mark[0]
-        if state.held >= max(settle, 2) and dt > 0:  # the last interval ran under this command throughout
-            v0, v1, v2 = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, heading=self.ground)
+        if held >= settle and held >= 2 and dt > 0:  # the last interval ran under this command throughout
+            v0, v1, v2 = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, self.ground)
             gain, bound = self.TRIM_GAIN, self.TRIM_LIMIT
-            limit0, limit1, limit2 = bound + fraction * abs(c0), bound + fraction * abs(c1), bound + fraction * abs(c2)
-            t0 = min(max(t0 + gain * (c0 - v0), -limit0), limit0)
-            t1 = min(max(t1 + gain * (c1 - v1), -limit1), limit1)
-            t2 = min(max(t2 + gain * (c2 - v2), -limit2), limit2)
+            # each trim plus the gain's share of the error, clamped to +-limit (as min(max(t, -limit), limit))
+            limit, t = bound + fraction * abs(c0), t0 + gain * (c0 - v0)
+            t = -limit if -limit > t else t
+            t0 = limit if limit < t else t
+            limit, t = bound + fraction * abs(c1), t1 + gain * (c1 - v1)
+            t = -limit if -limit > t else t
+            t1 = limit if limit < t else t
+            limit, t = bound + fraction * abs(c2), t2 + gain * (c2 - v2)
+            t = -limit if -limit > t else t
+            t2 = limit if limit < t else t
             state.trim = (t0, t1, t2)
         return c0 + t0, c1 + t1, c2 + t2
 
@@ -392,10 +406,13 @@ def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[fl
     sin = math.sqrt(vx * vx + vy * vy + vz * vz)
     angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)
     wz = vz * (angle / sin) if sin > 1e-12 else vz
-    moved = (pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2])
-    m0, m1 = transpose_apply(rot0, moved), transpose_apply(rot1, moved)
-    # the linear velocity in the frame half-way through
-    return (m0[0] + m1[0]) / 2.0 / dt, (m0[1] + m1[1]) / 2.0 / dt, wz / dt
+    x, y, z = pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2]
+    # the linear velocity in the frame half-way through: the mean of the displacement in the frames at both ends
+    # (transpose_apply's x and y, written out: z is not needed)
+    a0, a1, _, a3, a4, _, a6, a7, _ = rot0
+    b0, b1, _, b3, b4, _, b6, b7, _ = rot1
+    return (((a0 * x + a3 * y + a6 * z) + (b0 * x + b3 * y + b6 * z)) / 2.0 / dt,
+            ((a1 * x + a4 * y + a7 * z) + (b1 * x + b4 * y + b7 * z)) / 2.0 / dt, wz / dt)
 
 
 def _descends(m, body: int, ancestor: int) -> bool:

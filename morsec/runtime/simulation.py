@@ -19,6 +19,7 @@ import mujoco
 import numpy as np
 
 from morsec.component.catalogue import load_class
+from morsec.component.contract import SampledSensor
 from morsec.constants import MAX_SPEED, PSEUDO_COMPONENTS, SLEEP_HOLD_GRACE, SLEEP_HOLD_WAIT
 from morsec.errors import MorsecError, RuntimeFailure, Unsupported
 from morsec.middleware.base import Middleware, RunContext
@@ -109,6 +110,8 @@ class ComponentRuntime:
     echoes: list = field(default_factory=list)  # streams shown the commands its in_streams bring (--foxglove)
     modifiers: list = field(default_factory=list)
     recording: Any = None  # an actuator's tap in the recording, if one is made: the commands it takes
+    # a SampledSensor's local_data dict itself: its timestamp written there computes nothing (local_data would)
+    stamp: dict | None = None
     active: bool = True
     stopped: bool = False
     errors: set = field(default_factory=set)
@@ -215,6 +218,8 @@ class Simulation:
             self._handles = list(handles.values())
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
+            self._contact_pairs = b""  # the contacts' geom pairs (bytes) last looked at, and the robots touching
+            self._contact_touching: set[int] = set()
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
         except Unsupported:  # its line names the component's own file and line
             self.poller.close()
@@ -349,6 +354,7 @@ class Simulation:
                                      self.rng_for(entry.fqn, k, spec.name), self))
         return ComponentRuntime(
             fqn=entry.fqn, parent=entry.parent, robot=entry.robot, kind=entry.kind, instance=instance,
+            stamp=instance.local_dict if isinstance(instance, SampledSensor) else None,
             schedule=Periodic(entry.frequency, self.clock.dt),
             defaults=[(f.name, f.default) for f in impl.fields_at(entry.level)],
             streams=[(s.middleware, s.direction) for s in streams],
@@ -491,17 +497,22 @@ class Simulation:
     # ---------------------------------------------------------------- queries used by components
     def touching(self) -> set[int]:
         """The robots (their index in self.robots) that touch something not part of them in the contacts
-        MuJoCo found last: found once for all robots until the contacts change."""
+        MuJoCo found last: found once for all robots until the contacts change (the same geom pairs as the
+        last time they were looked at: the same robots, found again only when they differ)."""
         if self._touching is None:
-            touching = set()
-            if self.data.ncon:
+            geoms = self.data.contact.geom
+            pairs = geoms.tobytes()  # cheaper than tolist, and all a robot resting or driving on needs
+            if pairs != self._contact_pairs:
+                self._contact_pairs = pairs
+                touching = set()
                 owner = self._geom_robot
-                for first, second in self.data.contact.geom.tolist():  # ncon of them, a few a robot: no numpy
+                for first, second in geoms.tolist():  # ncon of them, a few a robot: no numpy
                     if owner[first] != owner[second]:
                         touching.add(owner[first])
                         touching.add(owner[second])
                 touching.discard(-1)  # a geom of no robot
-            self._touching = touching
+                self._contact_touching = touching
+            self._touching = self._contact_touching
         return self._touching
 
     def objects_with(self, tag: str) -> list[SceneObject]:
@@ -733,7 +744,9 @@ class Simulation:
                         self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 self.answer()
                 self._flush()
-                self._wait(self._delay())
+                delay = self._delay()
+                if delay > 0:
+                    self._wait(delay)
         finally:
             if started is not None:
                 self.loop_wall_time = time.perf_counter() - started
@@ -780,8 +793,11 @@ class Simulation:
     def answer(self) -> None:
         """The end of a frame, after its messages: the sleeps that ended at it answered, the components'
         asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time)."""
-        self.time_services.wake()
-        self.requests.start_waiting(self.clock.frames)
+        time_services, requests = self.time_services, self.requests
+        if time_services.sleepers or time_services.deferred:  # else nothing to wake (usually, at every frame)
+            time_services.wake()
+        if requests.waiting:
+            requests.start_waiting(self.clock.frames)
 
     def step(self) -> None:
         m, d = self.model, self.data
@@ -814,16 +830,17 @@ class Simulation:
         for handle in handles:
             if handle.ticks and handle.sample_tick_end():
                 sampled = True
-        self.clock.tick()
-        t = self.clock.elapsed
-        due = [c for c in self.sensors if c.active and (c.schedule.every_frame or c.schedule.due(t))]
-        if due:
-            mujoco.mj_kinematics(m, d)
-            if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
-                mujoco.mj_comPos(m, d)
-                mujoco.mj_comVel(m, d)
-            now = self.clock.now()
-            for comp in due:
+        clock = self.clock
+        clock.tick()
+        t, now = clock.elapsed, None
+        for comp in self.sensors:
+            if comp.active and (comp.schedule.every_frame or comp.schedule.due(t)):
+                if now is None:  # the first sensor due: the kinematics of the state the physics left, once
+                    mujoco.mj_kinematics(m, d)
+                    if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
+                        mujoco.mj_comPos(m, d)
+                        mujoco.mj_comVel(m, d)
+                    now = clock.now()
                 self._tick_sensor(comp, now)
 
     def _physics(self, m, d) -> None:
@@ -854,6 +871,8 @@ class Simulation:
         client whose sleep ended reads this frame's data with `last()`. They leave in the order of
         `send_ranks`, MESSAGE_GAP apart for `within` wall-clock seconds (requests are served meanwhile), the
         rest together."""
+        if not self.outbox:  # no stream has a reader
+            return
         outbox, self.outbox = self.outbox, []
         if len(outbox) > 1:
             outbox.sort(key=lambda item: item[0])
@@ -906,7 +925,7 @@ class Simulation:
 
     def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
         inst = comp.instance
-        inst.local_data["timestamp"] = now
+        (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
         try:
             inst.default_action()
             for modifier in comp.modifiers:
@@ -916,12 +935,15 @@ class Simulation:
         except Exception as err:
             comp.fail_once(err)
             return
+        listening = None  # the streams with a reader, each asked once
         for stream in comp.out_streams:
             if stream.listening:
-                break
-        else:
-            return  # no stream has a reader: no message built (local_data, computed above, stays readable)
-        listening = [stream for stream in comp.out_streams if stream.listening]
+                if listening is None:
+                    listening = [stream]
+                else:
+                    listening.append(stream)
+        if listening is None:
+            return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
         message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         if message is not None:
             self.outbox.append((self.send_rank[comp.fqn], listening, message))
@@ -1000,7 +1022,7 @@ class Stability:
         self.remember()
         # a view of MuJoCo's three counters of bad values (they follow one another): reading it costs nothing
         self.numbers = data.warning.number[self.BAD_QPOS:self.BAD_QACC + 1]
-        self.warnings = self._count()
+        self.warnings = self.numbers.tolist()  # as last seen: a frame that changes them made MuJoCo warn
         self.qpos_root = np.zeros(model.nq, dtype=int)  # the root body (robot or object) of each qpos entry
         for j in range(model.njnt):
             end = model.jnt_qposadr[j + 1] if j + 1 < model.njnt else model.nq
@@ -1008,16 +1030,13 @@ class Stability:
         self.dof_root = model.body_rootid[model.dof_bodyid].astype(int)
         self.reported: set[int] = set()
 
-    def _count(self) -> int:
-        return sum(self.numbers.tolist())
-
     def remember(self) -> None:
         mujoco.mj_getState(self.model, self.data, self.state, self.spec)
 
     def check(self, model, data) -> None:
-        count = self._count()
-        if count != self.warnings:
-            self.warnings = count
+        warnings = self.numbers.tolist()
+        if warnings != self.warnings:
+            self.warnings = warnings
             self.recover(model, data)
 
     def recover(self, model, data) -> None:

@@ -44,9 +44,12 @@ class GPS(Sensor):
                   "observable standing still)", level="extended"),
     )
 
+    def start(self):
+        self.xpos = self.sim.data.xpos[self.body_id]  # a view of its world position (MjData's arrays stay put)
+
     def default_action(self):
         local = self.local_data
-        local["x"], local["y"], local["z"] = self.sim.data.xpos[self.body_id].tolist()
+        local["x"], local["y"], local["z"] = self.xpos.tolist()
 
 
 class RawGPS(GPS):

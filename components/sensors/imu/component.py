@@ -13,6 +13,7 @@ from morsec.modifiers.noise import IMUNoise
 log = logging.getLogger("morsec.sensors.imu")
 
 RELOCATE_M = 1000.0  # the geomagnetic field is recomputed when the sensor has moved this far
+XBODY = int(mujoco.mjtObj.mjOBJ_XBODY)  # the body's own frame (see Component.velocity)
 
 
 class IMU(Sensor):
@@ -57,6 +58,10 @@ class IMU(Sensor):
         self.previous_pos = self.position().tolist()
         self.previous_rot = self.sim.data.xmat[self.body_id].tolist()
         self.previous_vel = self.velocity(local=False)[0].tolist() if self.mode == "Velocity" else [0.0] * 3
+        # views of the sensor's world position and rotation in MjData (whose arrays stay put), and the buffer
+        # mj_objectVelocity writes (angular, linear; world frame): this ticks every frame
+        self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
+        self._velocity = np.zeros(6)
         self.field_at = None  # scene position where the field was last computed
         self.field = [0.0, 0.0, 0.0]  # field in the scene frame, nT
         try:
@@ -70,21 +75,21 @@ class IMU(Sensor):
         dt = now - self.previous_time
         if dt < 1e-9:
             return
-        data = self.sim.data
-        rot = data.xmat[self.body_id].tolist()  # row-major 3x3, plain floats: this ticks every frame
-        pos = data.xpos[self.body_id].tolist()
-        if self.mode == "Velocity":
-            linear, angular = self.velocity(local=False)
-            vel, rates = linear.tolist(), transpose_apply(rot, angular.tolist())
+        rot = self.xmat.tolist()  # row-major 3x3, plain floats: this ticks every frame
+        pos = self.xpos.tolist()
+        if self.mode == "Velocity":  # Component.velocity(local=False), written out
+            mujoco.mj_objectVelocity(self.sim.model, self.sim.data, XBODY, self.body_id, self._velocity, 0)
+            velocity = self._velocity.tolist()
+            vel, rates = velocity[3:], transpose_apply(rot, velocity[:3])
         else:
             vel = [(p - q) / dt for p, q in zip(pos, self.previous_pos)]
             rates = np.zeros(3)
             relative = np.reshape(self.previous_rot, (3, 3)).T @ np.reshape(rot, (3, 3))
             mujoco.mju_quat2Vel(rates, matrix_to_quat(relative), dt)
             rates = rates.tolist()
-        g, pv = self.gravity, self.previous_vel
+        (g0, g1, g2), (p0, p1, p2), (v0, v1, v2) = self.gravity, self.previous_vel, vel
         # specific force: the acceleration minus gravity (gravity's reaction), in the IMU frame
-        accel = transpose_apply(rot, [(vel[i] - pv[i]) / dt - g[i] for i in range(3)])
+        accel = transpose_apply(rot, ((v0 - p0) / dt - g0, (v1 - p1) / dt - g1, (v2 - p2) / dt - g2))
         self.previous_time, self.previous_pos, self.previous_rot, self.previous_vel = now, pos, rot, vel
         self.local_data["angular_velocity"] = list(rates)
         self.local_data["linear_acceleration"] = list(accel)

@@ -30,7 +30,7 @@ import mujoco
 import numpy as np
 from pydantic import Field
 
-from morsec.component import ComponentProperties, DataField, Level, Sensor
+from morsec.component import ComponentProperties, DataField, Level, SampledSensor
 
 VISUAL_GROUP = 2  # robots' visual-only geoms and components' models (class "visual" / "component")
 HIDDEN_GROUP = 5  # where the carrying robot's own geoms are parked during a scan
@@ -77,7 +77,7 @@ class LaserScannerProperties(ComponentProperties):
                                 "only with layers > 1")
 
 
-class LaserScanner(Sensor):
+class LaserScanner(SampledSensor):
     """A laser range scanner: rays cast in a fan from the sensor's centre, in its x-y plane, looking along
     +x. `range_list[i]` is the distance to the first collision geometry hit by ray i (`laser_range` on a
     miss) and `point_list[i]` the hit point in the sensor frame (`[0, 0, 0]` on a miss). Rays go from
@@ -158,15 +158,21 @@ class LaserScanner(Sensor):
                 m.geom_group[own] = self._own_groups
         return dirs, self._dist, self._geomid, laser_range
 
-    def default_action(self) -> None:
+    # ---- a tick casts the rays (the world as it is then); the points and ranges are computed from them when
+    # read (SampledSensor): nothing to compute at the scans nobody reads
+    def sample(self) -> tuple:
+        # the cast's buffers, not copied: only the next scan rewrites them, and its sample replaces this one
         dirs, dist, geomid, laser_range = self.cast()
+        return dirs, dist, geomid if self._rssi else None, laser_range
+
+    def compute(self, dirs: np.ndarray, dist: np.ndarray, geomid: np.ndarray | None, laser_range: float) -> None:
         hit = (dist >= 0.0) & (dist <= laser_range)
         points = dirs * np.where(hit, dist, 0.0)[:, None]
         points += 0.0  # a missed ray's negative direction components give -0.0: MORSE writes plain 0.0
-        self.local_data["point_list"] = points
-        self.local_data["range_list"] = np.where(hit, dist, laser_range)
-        if self._rssi:
-            self.local_data["remission_list"] = self._remission[np.where(hit, geomid, -1)]
+        self.local_dict["point_list"] = points
+        self.local_dict["range_list"] = np.where(hit, dist, laser_range)
+        if geomid is not None:
+            self.local_dict["remission_list"] = self._remission[np.where(hit, geomid, -1)]
 
 
 COMPONENT = LaserScanner

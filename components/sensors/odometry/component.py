@@ -1,11 +1,15 @@
 import math
 
-from morsec.component import DataField, Level, Sensor
-from morsec.kits.geometry import euler_of_xmat, normalize_angle, transpose_apply, transpose_times
+from morsec.component import DataField, Level, SampledSensor
+from morsec.kits.geometry import (
+    euler_of_transpose_times,
+    normalize_angle,
+    transpose_apply,
+)
 from morsec.modifiers.noise import OdometryNoise, PoseNoise
 
 
-class Odometry(Sensor):
+class Odometry(SampledSensor):
     """Odometry of the sensor, at three levels of integration. Frames are the sensor's **initial**
     pose: the integrated level starts at 0 whatever the robot's start pose (as ROS's `odom`)."""
 
@@ -54,48 +58,38 @@ class Odometry(Sensor):
     def _pose(self):
         return tuple(self.xpos.tolist()), self.xmat.tolist()
 
-    def _in_origin(self, pos, rot):
-        """A pose expressed in the sensor's initial frame."""
-        o = self.origin_pos
-        return (transpose_apply(self.origin_rot, (pos[0] - o[0], pos[1] - o[1], pos[2] - o[2])),
-                transpose_times(self.origin_rot, rot))
-
-    def advance(self):
-        pos, rot = self._pose()
+    def sample(self):
+        """The pose at the last tick and at this one (the sensor's data is computed from both)."""
+        pos, rot = self.xpos.tolist(), self.xmat.tolist()
         prev_pos, prev_rot = self.previous_pos, self.previous_rot
         self.previous_pos, self.previous_rot = pos, rot
         return prev_pos, prev_rot, pos, rot
 
-    def default_action(self):
-        prev_pos, prev_rot, pos, rot = self.advance()
+    def compute(self, prev_pos, prev_rot, pos, rot):
         dx, dy, dz = transpose_apply(self.origin_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1],
                                                         pos[2] - prev_pos[2]))
-        r0, p0, y0 = euler_of_xmat(transpose_times(self.origin_rot, prev_rot))
-        r1, p1, y1 = euler_of_xmat(transpose_times(self.origin_rot, rot))
-        self.local_data.update(dx=dx, dy=dy, dz=dz, dyaw=normalize_angle(y1 - y0),
+        r0, p0, y0 = euler_of_transpose_times(self.origin_rot, prev_rot)
+        r1, p1, y1 = euler_of_transpose_times(self.origin_rot, rot)
+        self.local_dict.update(dx=dx, dy=dy, dz=dz, dyaw=normalize_angle(y1 - y0),
                                dpitch=normalize_angle(p1 - p0), droll=normalize_angle(r1 - r0))
 
 
 class RawOdometry(Odometry):
-    def default_action(self):
-        prev_pos, _, pos, _ = self.advance()
-        self.local_data["dS"] = math.dist(pos, prev_pos)
+    def compute(self, prev_pos, prev_rot, pos, rot):
+        self.local_dict["dS"] = math.dist(pos, prev_pos)
 
 
 class IntegratedOdometry(Odometry):
-    def default_action(self):
-        # advance and _in_origin written out: the default level of a sensor ticking at every frame
-        prev_pos, prev_rot = self.previous_pos, self.previous_rot
-        pos, rot = self.xpos.tolist(), self.xmat.tolist()
-        self.previous_pos, self.previous_rot = pos, rot
+    def compute(self, prev_pos, prev_rot, pos, rot):
         o, origin_rot = self.origin_pos, self.origin_rot
-        x, y, z = transpose_apply(origin_rot, (pos[0] - o[0], pos[1] - o[1], pos[2] - o[2]))
-        roll, pitch, yaw = euler_of_xmat(transpose_times(origin_rot, rot))
+        px, py, pz = pos
+        x, y, z = transpose_apply(origin_rot, (px - o[0], py - o[1], pz - o[2]))
+        roll, pitch, yaw = euler_of_transpose_times(origin_rot, rot)
         # velocities: the previous->current transform in the previous sensor frame, times the nominal rate
         f = self.frequency
-        vx, vy, vz = transpose_apply(prev_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1], pos[2] - prev_pos[2]))
-        d_roll, d_pitch, d_yaw = euler_of_xmat(transpose_times(prev_rot, rot))
-        local = self.local_data
+        vx, vy, vz = transpose_apply(prev_rot, (px - prev_pos[0], py - prev_pos[1], pz - prev_pos[2]))
+        d_roll, d_pitch, d_yaw = euler_of_transpose_times(prev_rot, rot)
+        local = self.local_dict
         local["x"], local["y"], local["z"] = x, y, z
         local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
         local["vx"], local["vy"], local["vz"] = vx * f, vy * f, vz * f

@@ -1,10 +1,10 @@
-from morsec.component import DataField, Sensor
+from morsec.component import DataField, SampledSensor
 from morsec.kits.geometry import euler_of_xmat
 from morsec.modifiers.coordinates import POSITION_OUT
 from morsec.modifiers.noise import PoseNoise
 
 
-class Pose(Sensor):
+class Pose(SampledSensor):
     """World position and orientation of the sensor itself (not of the robot): mount it where you want
     the pose read. On an ATRV, `translate: [0, 0, -0.1]` reads the ground pose."""
 
@@ -25,10 +25,13 @@ class Pose(Sensor):
         # views of the sensor's world position and rotation in MjData (whose arrays stay put)
         self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
 
-    def default_action(self):
-        x, y, z = self.xpos.tolist()
-        roll, pitch, yaw = euler_of_xmat(self.xmat.tolist())
-        local = self.local_data
+    def sample(self):
+        return self.xpos.tolist(), self.xmat.tolist()
+
+    def compute(self, pos, rot):
+        x, y, z = pos
+        roll, pitch, yaw = euler_of_xmat(rot)
+        local = self.local_dict
         local["x"], local["y"], local["z"] = x, y, z
         local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
 
