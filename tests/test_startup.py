@@ -17,7 +17,8 @@ import pytest
 
 from morsec.app import buildcache
 from morsec.app.project import build_scene, prepare_build
-from morsec.cli import COMMANDS, command_of, make_app
+from morsec.cli import COMMANDS, command_of
+from morsec.cli.assemble import make_app
 from morsec.resources import entry_points_of
 
 REPO = Path(__file__).resolve().parent.parent
@@ -45,6 +46,9 @@ RECORD_ONLY = ("mcap", "rosbags", "morsec.middleware.record", "morsec.app.replay
 MORSE_API_ONLY = ("morse", "morse.core", "morse.core.emulation", "morse.helpers", "mathutils")
 # what a usual `morsec run` command line does not need (morsec.cli.run_args reads it): typer and its adapters
 TYPER_ONLY = ("typer", "morsec.cli.assemble", "morsec.cli.running")
+
+# the middlewares the scene (socket streams only) does not use (morsec.middleware.registry imports one on use)
+UNUSED_MIDDLEWARES = ("morsec.middleware.ros", "morsec.middleware.text")
 
 # what only rendering needs: the GL backend (EGL or OSMesa) MuJoCo renders with (kits.render imports it when
 # something first renders)
@@ -127,7 +131,8 @@ def scene(tmp_path) -> Path:
 def test_running_a_build_imports_nothing_only_building_needs(scene, tmp_path):
     build = build_scene(scene, tmp_path / "build")
     result = run_python(AT_SCENE_INITIALIZED, ",".join(BUILD_ONLY + SWEEP_ONLY + FOXGLOVE_ONLY + RECORD_ONLY
-                                                       + MORSE_API_ONLY + TYPER_ONLY + GL_ONLY), "run", str(build),
+                                                       + MORSE_API_ONLY + TYPER_ONLY + GL_ONLY
+                                                       + UNUSED_MIDDLEWARES), "run", str(build),
                         "--duration", "0.05",
                         "--time-strategy", "fixed_step", "--port-base", "0", "--service-port", "0")
     line = next(x for x in result.stdout.splitlines() if x.startswith("MODULES "))

@@ -44,10 +44,7 @@ def __getattr__(name: str):
     if name == "app":  # the whole command line (typer.testing's CliRunner, docs)
         from morsec.cli.assemble import make_app
         return make_app()
-    if name == "make_app":
-        from morsec.cli.assemble import make_app
-        return make_app
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-__all__ = ["COMMANDS", "main", "make_app"]
+__all__ = ["COMMANDS", "main"]

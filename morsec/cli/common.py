@@ -32,3 +32,11 @@ def fail(err: MorsecError) -> NoReturn:
 
 def on_terminal() -> bool:
     return sys.stdout.isatty()
+
+
+def check_ports(*options: tuple[str, int | None]) -> None:
+    """Each (option, value) given a port number from 0 to MAX_PORT, or not given (None)."""
+    from morsec.constants import MAX_PORT
+    for name, value in options:
+        if value is not None and not 0 <= value <= MAX_PORT:
+            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))

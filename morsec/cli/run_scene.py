@@ -6,8 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
-from morsec.cli.common import echo, fail
-from morsec.constants import MAX_PORT, MAX_TIME_SCALE, MIN_TIME_SCALE
+from morsec.cli.common import check_ports, echo, fail
+from morsec.constants import MAX_TIME_SCALE, MIN_TIME_SCALE
 from morsec.errors import MorsecError
 
 if TYPE_CHECKING:
@@ -33,10 +33,8 @@ def run_scene(scene: Path, *, time_strategy: TimeStrategy | None, duration: floa
         fail(MorsecError(f"--duration must be a positive number, got {duration}"))
     if time_scale is not None and not MIN_TIME_SCALE <= time_scale <= MAX_TIME_SCALE:
         fail(MorsecError(f"--time-scale must be between {MIN_TIME_SCALE:g} and {MAX_TIME_SCALE:g}, got {time_scale}"))
-    for name, value in (("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port),
-                        ("--foxglove-port", foxglove_port)):
-        if value is not None and not 0 <= value <= MAX_PORT:
-            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
+    check_ports(("--service-port", service_port), ("--port-base", port_base), ("--view-port", view_port),
+                ("--foxglove-port", foxglove_port))
     if seed is not None and seed < 0:
         fail(MorsecError(f"--seed must be 0 or more, got {seed}"))
     if record_services and record is None:

@@ -7,11 +7,10 @@ from typing import Annotated
 
 import typer
 
-from morsec.cli.common import fail
+from morsec.cli.common import check_ports, fail
 from morsec.constants import (
     DEFAULT_BIND,
     FOXGLOVE_PORT,
-    MAX_PORT,
     SERVICE_PORT,
     SERVICE_PORT_ATTEMPTS,
     STREAM_PORT_BASE,
@@ -62,11 +61,9 @@ def run(
         "else the host name); see `morsec multinode-server`")] = None,
 ) -> None:
     """Build SCENE if needed and run it; MORSE clients (pymorse) connect to the printed ports."""
+    options = dict(locals())  # exactly run's parameters, as run_scene takes them
     from morsec.cli.run_scene import run_scene
-    run_scene(scene, time_strategy=time_strategy, duration=duration, time_scale=time_scale, bind=bind,
-              service_port=service_port, port_base=port_base, seed=seed, out=out, view=view, view_port=view_port,
-              output_dir=output_dir, foxglove=foxglove, foxglove_port=foxglove_port,
-              wait_for_client=wait_for_client, record=record, record_services=record_services, node=node)
+    run_scene(**options)
 
 
 def replay(
@@ -95,9 +92,7 @@ def replay(
         return
     if not rate > 0:
         fail(MorsecError(f"--rate must be a positive number, got {rate}"))
-    for name, value in (("--service-port", service_port), ("--port-base", port_base)):
-        if value is not None and not 0 <= value <= MAX_PORT:
-            fail(MorsecError(f"{name} must be a port number from 0 to {MAX_PORT}, got {value}"))
+    check_ports(("--service-port", service_port), ("--port-base", port_base))
     try:
         player = Replay(recording, ReplayOptions(rate=rate, bind=bind, service_port=service_port,
                                                  port_base=port_base, wait_for_client=wait_for_client))

@@ -82,7 +82,6 @@ class ComponentEntry(Entry):
     services: list[str] = Field(description="middlewares its services are exposed on")
     service_names: list[str]
     modifiers: list[ModifierEntry]
-    # [] rather than default_factory=list, whose signature pydantic would read (importing tokenize) at every start
     overlays: list[OverlayEntry] = Field([], description="its services adapted for one middleware")
     tags: dict[str, Any] = Field(description="game properties its type does not declare, which sensors read")
     path: list[str | int] = Field(description="where it is in the scene (for messages)")
