@@ -33,7 +33,7 @@ sys.path.insert(0, str(ROOT))
 from morsec.app.project import build_scene  # noqa: E402
 from morsec.runtime.simulation import RunOptions, Simulation  # noqa: E402
 
-WATCH = ROOT / "tests" / "foxglove" / "watch.mjs"
+WATCH = ROOT / "tests" / "node" / "watch.mjs"
 REFERENCE = (ROOT / "benchmarks" / "reference.yaml").read_text()
 LASER = """\
 environment:

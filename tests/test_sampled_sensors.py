@@ -3,6 +3,7 @@ and whatever reads it, whenever, gets what computing it at every tick would have
 
 from __future__ import annotations
 
+import socket
 from pathlib import Path
 
 import numpy as np
@@ -88,5 +89,35 @@ def test_a_tick_nobody_reads_computes_nothing(build):
         x = pose.local_data["x"]  # a read computes the last tick's sample, once
         assert len(computed) == 1 and x == pose.local_data["x"] and len(computed) == 1
         assert x == pytest.approx(sim.data.xpos[pose.body_id][0])
+    finally:
+        sim.close()
+
+
+def test_a_failing_computation_is_the_sensors_error_not_the_runs(build, caplog):
+    """A SampledSensor computes when its message is built, after its tick: an error there is reported once
+    for the sensor, as one in its tick is, and the loop goes on (the other sensors' messages still leave)."""
+    sim = Simulation(build, RunOptions(strategy="fixed_step", service_port=0, port_base=0))
+    try:
+        pose = sim.by_name["robot.pose"]
+        odometry = sim.by_name["robot.odo_raw"]
+
+        def broken(*sample):
+            raise ValueError("no pose today")
+
+        pose.instance.compute = broken  # type: ignore[method-assign]
+        readers = [socket.create_connection(("127.0.0.1", comp.out_streams[0].port), timeout=10)
+                   for comp in (pose, odometry)]
+        sim.poller.poll(0.1)
+        sim.poller.poll(0.1)
+        assert pose.out_streams[0].listening and odometry.out_streams[0].listening
+        for _ in range(5):
+            sim.frame()
+            sim.answer()
+        assert [r.message for r in caplog.records].count("robot.pose: ValueError: no pose today") == 1
+        readers[1].settimeout(10)
+        lines = readers[1].makefile().readline()
+        assert "timestamp" in lines  # the odometry's messages left
+        for reader in readers:
+            reader.close()
     finally:
         sim.close()

@@ -755,9 +755,13 @@ class Simulation:
     def _delay(self) -> float:
         """Wall-clock seconds before the next frame: best_effort's, or fixed_step's (none, or the wall
         clock's pace while a client is between two sleeps; a lockstep client paces the loop itself)."""
-        paced = (self.hold is not None and bool(self.hold.awake) and not (self.sync is not None and self.sync.engaged)
-                 and self.hold.pacing())
-        return self.clock.delay(paced)
+        return self.clock.delay(self._paced())
+
+    def _paced(self) -> bool:
+        """Whether fixed_step follows the wall clock now: a client is between two sleeps (SleepHold), and no
+        lockstep client paces the loop."""
+        return (self.hold is not None and bool(self.hold.awake) and not (self.sync is not None and self.sync.engaged)
+                and self.hold.pacing())
 
     def _wait(self, delay: float) -> None:
         while delay > 0 and not self.quitting:
@@ -787,7 +791,8 @@ class Simulation:
         if self.multinode is not None:  # the other nodes' robots placed; held here while this node runs ahead
             self.multinode.exchange()
         self.step()
-        self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
+        if self.outbox:  # else no stream has a reader
+            self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
         self._flush()
 
     def answer(self) -> None:
@@ -871,8 +876,6 @@ class Simulation:
         client whose sleep ended reads this frame's data with `last()`. They leave in the order of
         `send_ranks`, MESSAGE_GAP apart for `within` wall-clock seconds (requests are served meanwhile), the
         rest together."""
-        if not self.outbox:  # no stream has a reader
-            return
         outbox, self.outbox = self.outbox, []
         if len(outbox) > 1:
             outbox.sort(key=lambda item: item[0])
@@ -888,8 +891,7 @@ class Simulation:
         client paces the loop."""
         if self.sync is not None and self.sync.engaged:
             return 0.0
-        paced = self.hold is not None and bool(self.hold.awake) and self.hold.pacing()
-        return self.clock.spare(paced)
+        return self.clock.spare(self._paced())
 
     def _tick_actuator(self, comp: ComponentRuntime) -> None:
         message = None
@@ -926,15 +928,6 @@ class Simulation:
     def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
         inst = comp.instance
         (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
-        try:
-            inst.default_action()
-            for modifier in comp.modifiers:
-                modifier.modify(inst.local_data)
-        except Unsupported:
-            raise
-        except Exception as err:
-            comp.fail_once(err)
-            return
         listening = None  # the streams with a reader, each asked once
         for stream in comp.out_streams:
             if stream.listening:
@@ -942,9 +935,19 @@ class Simulation:
                     listening = [stream]
                 else:
                     listening.append(stream)
-        if listening is None:
-            return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
-        message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
+        try:
+            inst.default_action()
+            for modifier in comp.modifiers:
+                modifier.modify(inst.local_data)
+            if listening is None:
+                return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
+            # local_data, or the sensor's own format; None: nothing this tick (a SampledSensor computes here)
+            message = inst.serialize()
+        except Unsupported:
+            raise
+        except Exception as err:
+            comp.fail_once(err)
+            return
         if message is not None:
             self.outbox.append((self.send_rank[comp.fqn], listening, message))
 
