@@ -123,20 +123,17 @@ def callgrind_frames(build: Path, side: str, duration: float) -> int:
         with tempfile.TemporaryDirectory() as out:
             cmd = ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}/cg.%p", sys.executable, __file__,
                    "--child", side, "--build", str(build), "--duration", repr(seconds)]
-            for attempt in range(4):
-                # OpenBLAS's idle worker threads (numpy's, in both sides' processes) would be counted too:
-                # valgrind runs one thread at a time and gives them a turn at every system call of the main
-                # thread, where they spin; with one BLAS thread there are none (neither loop calls BLAS).
-                # Under valgrind, MuJoCo's MJCF reader now and then rejects a number of a large scene ("XML
-                # Error: unknown error in attribute 'quat'"), depending on the process's memory layout: tried
-                # again with an environment of another size
-                # A fixed PYTHONHASHSEED: with random string hashes, dicts and sets differ from one process to the
-                # next, and so do the instructions of each (by 0.5% of a frame's, run to run); fixed, by 0.001%
-                env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONHASHSEED": "0",
-                       "RUN_LOOP_PADDING": "x" * (64 * attempt)}
-                result = subprocess.run(cmd, capture_output=True, text=True, env=env)
-                if result.returncode == 0 or "XML Error" not in result.stderr:
-                    break
+            # OpenBLAS's idle worker threads (numpy's, in both sides' processes) would be counted too:
+            # valgrind runs one thread at a time and gives them a turn at every system call of the main
+            # thread, where they spin; with one BLAS thread there are none (neither loop calls BLAS).
+            # A fixed PYTHONHASHSEED: with random string hashes, dicts and sets differ from one process to the
+            # next, and so do the instructions of each (by 0.5% of a frame's, run to run); fixed, by 0.001%.
+            # malloc grows its heap 64 MiB at a time: valgrind caps the heap brk grows, and a failed brk leaves
+            # errno set where MuJoCo's XML parser, reading a large scene.xml, takes it for an error of its own
+            # ("XML Error: unknown error in attribute 'quat'")
+            env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "PYTHONHASHSEED": "0",
+                   "GLIBC_TUNABLES": "glibc.malloc.top_pad=67108864"}
+            result = subprocess.run(cmd, capture_output=True, text=True, env=env)
             if result.returncode != 0:
                 raise SystemExit(f"failed under callgrind: {' '.join(cmd)}\n{result.stderr[-2000:]}")
             return sum(int(m) for m in re.findall(r"Collected : (\d+)", result.stderr))

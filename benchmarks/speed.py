@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 import sys
 import tempfile
@@ -88,24 +87,14 @@ def loop_wall_row(name: str, build: Path, plan: Plan) -> Row:
 
 def loop_instruction_rows(builds: dict[str, Path], plan: Plan) -> list[Row]:
     """Instructions per frame, run_loop.py's callgrind way, the children of all scenes two at a time (a count
-    of instructions does not depend on what else runs). Their malloc grows its heap 64 MiB at a time: valgrind
-    caps the heap that brk grows, and a failed brk leaves errno set where MuJoCo's XML parser, reading the
-    fleet's scene.xml, takes it for an error of its own ("unknown error in attribute 'quat'")."""
+    of instructions does not depend on what else runs)."""
     measured = [name for name in reversed(list(builds)) if name in plan.callgrind_seconds]  # the longest first
     jobs = {(name, side): (builds[name], plan.callgrind_seconds[name]) for name in measured
             for side in ("morsec", "bare")}
-    saved = os.environ.get("GLIBC_TUNABLES")
-    os.environ["GLIBC_TUNABLES"] = "glibc.malloc.top_pad=67108864"
-    try:
-        with ThreadPoolExecutor(max_workers=2) as pool:
-            futures = {key: pool.submit(run_loop.callgrind_frames, build, key[1], seconds)
-                       for key, (build, seconds) in jobs.items()}
-            counts = {key: future.result() for key, future in futures.items()}
-    finally:
-        if saved is None:
-            del os.environ["GLIBC_TUNABLES"]
-        else:
-            os.environ["GLIBC_TUNABLES"] = saved
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        futures = {key: pool.submit(run_loop.callgrind_frames, build, key[1], seconds)
+                   for key, (build, seconds) in jobs.items()}
+        counts = {key: future.result() for key, future in futures.items()}
     rows = []
     for name, build in builds.items():
         target = run_loop.SCENES[name][2]

@@ -83,6 +83,7 @@ def test_anytime_requests_are_answered_within_the_frames_physics_the_others_at_i
         assert client.answers() == [f"z SUCCESS {sim.clock.now()!r}"]
         before = sim.clock.now()
         # a command between two `time now`s: the second waits behind it, each client's answers keep its order
+        client.converse()  # again: the step below starts within CONVERSATION of a request, however loaded the machine
         client.send("a time now\nb simulation set_object_dynamics [\"robot\", true]\nc time now\nd time mode\n")
         sim.step()  # the physics reads the connection between its sub-steps
         assert client.answers() == [f"a SUCCESS {before!r}"]  # the time the frame started from

@@ -112,6 +112,7 @@ class ComponentRuntime:
     recording: Any = None  # an actuator's tap in the recording, if one is made: the commands it takes
     # a SampledSensor's local_data dict itself: its timestamp written there computes nothing (local_data would)
     stamp: dict | None = None
+    send_rank: tuple[int, int] = (1, 0)  # a sensor's: when its message leaves in a frame (set_send_ranks)
     active: bool = True
     stopped: bool = False
     errors: set = field(default_factory=set)
@@ -247,7 +248,7 @@ class Simulation:
             except ValueError as err:  # a component that cannot work in this scene (missing geodetic properties ...)
                 self.poller.close()
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
-        self.send_rank = send_ranks(self.components)  # after start: the sensors' computation modes resolved
+        set_send_ranks(self.components)  # after start: the sensors' computation modes resolved
 
         self.time_services = TimeServices(self)
         self.requests.on_request.append(self.time_services.arrived)
@@ -874,7 +875,7 @@ class Simulation:
     def _send_sensor_messages(self, within: float = 0.0) -> None:
         """Publish the frame's sensor messages, before the answers to the sleeps that ended at this frame: a
         client whose sleep ended reads this frame's data with `last()`. They leave in the order of
-        `send_ranks`, MESSAGE_GAP apart for `within` wall-clock seconds (requests are served meanwhile), the
+        `set_send_ranks`, MESSAGE_GAP apart for `within` wall-clock seconds (requests are served meanwhile), the
         rest together."""
         outbox, self.outbox = self.outbox, []
         if len(outbox) > 1:
@@ -949,7 +950,7 @@ class Simulation:
             comp.fail_once(err)
             return
         if message is not None:
-            self.outbox.append((self.send_rank[comp.fqn], listening, message))
+            self.outbox.append((comp.send_rank, listening, message))
 
     def close(self) -> None:
         view = getattr(self, "view", None)  # None: closed, or __init__ stopped before opening it
@@ -981,26 +982,25 @@ class Simulation:
             recorder.close()
 
 
-def send_ranks(components: list[ComponentRuntime]) -> dict[str, tuple[int, int]]:
-    """The order a frame's sensor messages leave in (lowest rank first): the order in which MORSE's messages
-    carrying the same actuator decision left. MORSE ran each object's logic, the object created last first,
-    then the physics step; morsec's sensors all read after it. So a MORSE sensor reading its robot's
-    velocities (ComputationMode Velocity), run after an actuator created after it had set them, sent that
-    decision in the frame it was made, and every other sensor a frame later, in the pose the physics made of
-    it: those velocity sensors first, then the others, each group the sensor created last first. Left a little
-    apart in this order, `b.get(); a.last()` reads one frame in both streams when a leaves before b, as
-    MORSE's accelerometer test (accel_pi before accel) and attitude test (attitude before attitude_pos) read."""
+def set_send_ranks(components: list[ComponentRuntime]) -> None:
+    """Each sensor's `send_rank`: the order a frame's sensor messages leave in (lowest rank first), the
+    order in which MORSE's messages carrying the same actuator decision left. MORSE ran each object's logic,
+    the object created last first, then the physics step; morsec's sensors all read after it. So a MORSE
+    sensor reading its robot's velocities (ComputationMode Velocity), run after an actuator created after it
+    had set them, sent that decision in the frame it was made, and every other sensor a frame later, in the
+    pose the physics made of it: those velocity sensors first, then the others, each group the sensor created
+    last first. Left a little apart in this order, `b.get(); a.last()` reads one frame in both streams when a
+    leaves before b, as MORSE's accelerometer test (accel_pi before accel) and attitude test (attitude before
+    attitude_pos) read."""
     order = {c.fqn: index for index, c in enumerate(components)}
     last_driver: dict[str, int] = {}  # robot -> the index of its last actuator driving its velocities
     for c in components:
         if c.kind == "actuator" and getattr(c.instance, "base_servo", False):
             last_driver[c.robot] = order[c.fqn]
-    ranks = {}
     for c in components:
         if c.kind == "sensor":
             ahead = getattr(c.instance, "mode", None) == "Velocity" and last_driver.get(c.robot, -1) > order[c.fqn]
-            ranks[c.fqn] = (0 if ahead else 1, -order[c.fqn])
-    return ranks
+            c.send_rank = (0 if ahead else 1, -order[c.fqn])
 
 
 class Stability:
