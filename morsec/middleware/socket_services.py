@@ -6,7 +6,6 @@ from __future__ import annotations
 import json
 import logging
 import math
-import selectors
 from collections import deque
 
 from morsec.component.services import FAILED, Request, RequestHandler
@@ -46,12 +45,12 @@ class ServiceServer(Server):
         self.requests = requests
         self.discarding: set[Connection] = set()
         self.waiting: dict[Connection, deque[bytes]] = {}  # request lines not served yet
-        self.talkers = selectors.DefaultSelector()  # the clients alone, for answer_anytime
+        self.talkers = Poller()  # the clients alone, for answer_anytime
         self.mid_frame = False  # in answer_anytime: a frame's physics is running
         self.leaving: set[Connection] = set()  # clients to drop at the frame's end (their answer failed mid-frame)
 
     def accepted(self, conn: Connection) -> None:
-        self.talkers.register(conn.sock, selectors.EVENT_READ, conn)
+        self.talkers.register(conn.sock, lambda _, c=conn: self._anytime_readable(c))
 
     def _readable(self, conn: Connection) -> None:
         if len(self.waiting.get(conn, ())) >= MAX_REQUESTS_PER_POLL:
@@ -68,20 +67,22 @@ class ServiceServer(Server):
         is dropped at the frame's end (its end of file stays readable)."""
         self.mid_frame = True
         try:
-            for key, _ in self.talkers.select(0):
-                conn = key.data
-                lines = self.waiting.get(conn)
-                if conn.closed or (lines and not self._anytime(lines[0])):
-                    continue  # its next request waits for the frame's end: so does all it sends after it
-                if lines is None or len(lines) < MAX_REQUESTS_PER_POLL:
-                    data = conn.receive(acknowledge=False)
-                    if not data:  # nothing after all, or the client left: the frame's end sees to it
-                        continue
-                    self.poller.polls += 1  # what arrived here arrived together (TimeServices counts round trips)
-                    self._take(conn, data)
-                self._serve_and_acknowledge(conn, anytime=True)
+            self.talkers.poll(0.0)
         finally:
             self.mid_frame = False
+
+    def _anytime_readable(self, conn: Connection) -> None:
+        """A client that wrote, mid-frame (answer_anytime)."""
+        lines = self.waiting.get(conn)
+        if conn.closed or (lines and not self._anytime(lines[0])):
+            return  # its next request waits for the frame's end: so does all it sends after it
+        if lines is None or len(lines) < MAX_REQUESTS_PER_POLL:
+            data = conn.receive(acknowledge=False)
+            if not data:  # nothing after all, or the client left: the frame's end sees to it
+                return
+            self.poller.polls += 1  # what arrived here arrived together (TimeServices counts round trips)
+            self._take(conn, data)
+        self._serve_and_acknowledge(conn, anytime=True)
 
     def _anytime(self, raw: bytes) -> bool:
         tokens = _tokens(raw)
@@ -201,10 +202,7 @@ class ServiceServer(Server):
                 self.drop(conn)
 
     def dropped(self, conn: Connection) -> None:
-        try:
-            self.talkers.unregister(conn.sock)  # closed already: found by its object
-        except (KeyError, ValueError):
-            pass
+        self.talkers.unregister(conn.sock)  # closed already: found by its object
         self.leaving.discard(conn)
         self.requests.drop_client(conn)
         self.discarding.discard(conn)
@@ -213,7 +211,7 @@ class ServiceServer(Server):
     def close(self) -> None:
         self._send_answers()
         super().close()
-        self.talkers.close()
+        self.talkers.close()  # its clients all dropped (and unregistered) by now: only its epoll is left
 
 
 def _tokens(raw: bytes) -> list[str]:

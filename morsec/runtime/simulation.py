@@ -929,6 +929,15 @@ class Simulation:
     def _tick_sensor(self, comp: ComponentRuntime, now: float) -> None:
         inst = comp.instance
         (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
+        try:
+            inst.default_action()
+            for modifier in comp.modifiers:
+                modifier.modify(inst.local_data)
+        except Unsupported:
+            raise
+        except Exception as err:
+            comp.fail_once(err)
+            return
         listening = None  # the streams with a reader, each asked once
         for stream in comp.out_streams:
             if stream.listening:
@@ -936,14 +945,10 @@ class Simulation:
                     listening = [stream]
                 else:
                     listening.append(stream)
-        try:
-            inst.default_action()
-            for modifier in comp.modifiers:
-                modifier.modify(inst.local_data)
-            if listening is None:
-                return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
-            # local_data, or the sensor's own format; None: nothing this tick (a SampledSensor computes here)
-            message = inst.serialize()
+        if listening is None:
+            return  # no stream has a reader: no message built (local_data stays readable: SampledSensor)
+        try:  # a SampledSensor computes here: its errors are the sensor's, as its tick's are
+            message = inst.serialize()  # local_data, or the sensor's own format; None: nothing this tick
         except Unsupported:
             raise
         except Exception as err:
