@@ -14,8 +14,6 @@ from morsec.kits.geometry import (
     euler_to_quat,
     matrix_to_quat,
     quat_to_matrix,
-    times_transpose,
-    transpose_times,
 )
 
 
@@ -97,23 +95,33 @@ class RobotHandle:
         physics steps (ground robots keep vertical velocity, roll and pitch from physics; a new command is set
         on their body at once, as MORSE's, the servos then hold it, trimmed: see follow). 'Position':
         displace by linear/frequency and rotate by angular/frequency, kinematically."""
-        d = self.sim.data
         linear = bounded_floats(linear, MAX_SPEED, "a linear speed (m/s)")
         angular = bounded_floats(angular, MAX_SPEED, "an angular speed (rad/s)")
         if control_type == "Position":
             self.ticks = []
             if self.servo:
-                d.ctrl[self.servo] = 0.0
+                self.sim.data.ctrl[self.servo] = 0.0
                 self._follow.pop("base servos", None)
             self.displace(np.asarray(linear, float) / frequency, np.asarray(angular, float) / frequency)
             return
+        self._apply_velocity(linear, angular, frequency)
+
+    def apply_planar_speed(self, control_type: str, v: float, w: float, frequency: float) -> None:
+        """apply_speed(control_type, [v, 0, 0], [0, 0, w], frequency) for floats v and w: the same, checked
+        in fewer steps (motion_vw gives its robot these at every tick)."""
+        if control_type != "Position" and abs(v) <= MAX_SPEED and abs(w) <= MAX_SPEED:  # NaN fails them too
+            self._apply_velocity((v, 0.0, 0.0), (0.0, 0.0, w), frequency)
+        else:
+            self.apply_speed(control_type, [v, 0.0, 0.0], [0.0, 0.0, w], frequency)
+
+    def _apply_velocity(self, linear: tuple[float, ...], angular: tuple[float, ...], frequency: float) -> None:
+        """apply_speed's 'Velocity', the speeds checked."""
         if self.servo:
-            planar = (linear[0], linear[1], angular[2])
+            p0, p1, p2 = linear[0], linear[1], angular[2]
             if self.free and self.ground:
                 # what MORSE's ground friction left of the command over the period (kits.ground_friction)
-                planar = ground_friction.turned(linear[0], linear[1], angular[2],
-                                                self._slide(linear[0], linear[1], frequency))
-            vx, vy, wz = self._follow_floats("base servos", *planar)
+                p0, p1, p2 = ground_friction.turned(p0, p1, p2, self._slide(p0, p1, frequency))
+            vx, vy, wz = self._follow_floats("base servos", p0, p1, p2)
             ctrl, servo = self._ctrl, self.servo
             ctrl[servo[0]], ctrl[servo[1]], ctrl[servo[2]] = vx, vy, wz  # cheaper than a slice
             if self.free and self.ground and self._follow["base servos"].held == 0:
@@ -121,9 +129,9 @@ class RobotHandle:
                 # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
                 _, rot = self.pose()
                 v = self._base_qvel()
-                world = rot @ np.array([planar[0], planar[1], 0.0])
+                world = rot @ np.array([p0, p1, 0.0])
                 v[0], v[1] = world[0], world[1]
-                v[5] = planar[2]
+                v[5] = p2
             if self.free and not self.ground:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
@@ -399,9 +407,19 @@ def _sign(x: float) -> int:
 def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[float, float, float]:
     """(vx, vy, wz) of a body over an interval, from its poses at both ends (positions; rotations as
     row-major 9-lists): velocity in its own frame, turn rate about its own z axis, or with `heading` about
-    the world's vertical (a ground robot's heading)."""
-    delta = times_transpose(rot1, rot0) if heading else transpose_times(rot0, rot1)
-    d00, d01, d02, d10, d11, d12, d20, d21, d22 = delta
+    the world's vertical (a ground robot's heading). Written out (the rotation between both ends,
+    geometry's times_transpose or transpose_times, the same sums in the same order): this runs at every tick
+    of every robot driven by velocity."""
+    a0, a1, a2, a3, a4, a5, a6, a7, a8 = rot0
+    b0, b1, b2, b3, b4, b5, b6, b7, b8 = rot1
+    if heading:  # rot1 rot0^T, in the world's frame
+        d00, d11, d22 = b0 * a0 + b1 * a1 + b2 * a2, b3 * a3 + b4 * a4 + b5 * a5, b6 * a6 + b7 * a7 + b8 * a8
+        d01, d02, d12 = b0 * a3 + b1 * a4 + b2 * a5, b0 * a6 + b1 * a7 + b2 * a8, b3 * a6 + b4 * a7 + b5 * a8
+        d10, d20, d21 = b3 * a0 + b4 * a1 + b5 * a2, b6 * a0 + b7 * a1 + b8 * a2, b6 * a3 + b7 * a4 + b8 * a5
+    else:  # rot0^T rot1, in the body's frame
+        d00, d11, d22 = a0 * b0 + a3 * b3 + a6 * b6, a1 * b1 + a4 * b4 + a7 * b7, a2 * b2 + a5 * b5 + a8 * b8
+        d01, d02, d12 = a0 * b1 + a3 * b4 + a6 * b7, a0 * b2 + a3 * b5 + a6 * b8, a1 * b2 + a4 * b5 + a7 * b8
+        d10, d20, d21 = a1 * b0 + a4 * b3 + a7 * b6, a2 * b0 + a5 * b3 + a8 * b6, a2 * b1 + a5 * b4 + a8 * b7
     vx, vy, vz = (d21 - d12) / 2, (d02 - d20) / 2, (d10 - d01) / 2
     sin = math.sqrt(vx * vx + vy * vy + vz * vz)
     angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)
@@ -409,8 +427,6 @@ def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[fl
     x, y, z = pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2]
     # the linear velocity in the frame half-way through: the mean of the displacement in the frames at both ends
     # (transpose_apply's x and y, written out: z is not needed)
-    a0, a1, _, a3, a4, _, a6, a7, _ = rot0
-    b0, b1, _, b3, b4, _, b6, b7, _ = rot1
     return (((a0 * x + a3 * y + a6 * z) + (b0 * x + b3 * y + b6 * z)) / 2.0 / dt,
             ((a1 * x + a4 * y + a7 * z) + (b1 * x + b4 * y + b7 * z)) / 2.0 / dt, wz / dt)
 

@@ -743,9 +743,11 @@ class Simulation:
                     self._pause(gap)
                     if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
                         self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
-                self.answer()
-                self._flush()
-                delay = self._delay()
+                # the answers, and the request lines still waiting (a client conversing: each flush serves a
+                # share of them) sent now; else the frame's own flush left nothing to do
+                if self.answer() or now - self.requests.last_request < CONVERSATION:
+                    self._flush()
+                delay = self.clock.delay(self._paced())
                 if delay > 0:
                     self._wait(delay)
         finally:
@@ -761,8 +763,9 @@ class Simulation:
     def _paced(self) -> bool:
         """Whether fixed_step follows the wall clock now: a client is between two sleeps (SleepHold), and no
         lockstep client paces the loop."""
-        return (self.hold is not None and bool(self.hold.awake) and not (self.sync is not None and self.sync.engaged)
-                and self.hold.pacing())
+        hold = self.hold
+        return (hold is not None and bool(hold.awake) and not (self.sync is not None and self.sync.engaged)
+                and hold.pacing())
 
     def _wait(self, delay: float) -> None:
         while delay > 0 and not self.quitting:
@@ -796,14 +799,18 @@ class Simulation:
             self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
         self._flush()
 
-    def answer(self) -> None:
+    def answer(self) -> bool:
         """The end of a frame, after its messages: the sleeps that ended at it answered, the components'
-        asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time)."""
+        asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time).
+        Whether there was any to answer (else there is nothing to flush)."""
         time_services, requests = self.time_services, self.requests
-        if time_services.sleepers or time_services.deferred:  # else nothing to wake (usually, at every frame)
+        woken = bool(time_services.sleepers or time_services.deferred)  # usually neither, at every frame
+        if woken:
             time_services.wake()
         if requests.waiting:
             requests.start_waiting(self.clock.frames)
+            return True
+        return woken
 
     def step(self) -> None:
         m, d = self.model, self.data

@@ -24,7 +24,7 @@ class MotionVW(Actuator):
 
     def default_action(self):
         v, w = float(self.local_data["v"]), float(self.local_data["w"])
-        self.robot.apply_speed(self.properties.ControlType, [v, 0.0, 0.0], [0.0, 0.0, w], self.frequency)
+        self.robot.apply_planar_speed(self.properties.ControlType, v, w, self.frequency)
 
     @service
     def set_speed(self, v: float, w: float):
