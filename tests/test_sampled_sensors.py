@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import socket
 from pathlib import Path
+from types import SimpleNamespace
 
+import mujoco
 import numpy as np
 import pytest
 
@@ -175,6 +177,51 @@ def test_every_sampled_sensor_computes_all_its_fields(build):
                     sensor.local_dict[key] = stale
             sensor.compute(*sample)
             assert [key for key, value in sensor.local_dict.items() if value is stale] == [], fqn
+    finally:
+        sim.close()
+
+
+def test_a_cast_reads_of_mjdata_only_what_a_scan_copies(build):
+    """The laser scanners' deferred cast rests on this: the installed MuJoCo's mj_multiRay reads from MjData only
+    the poses a scan copies (geoms', bodies' inertial frames). Cast on an MjData whose every other
+    float is NaN, each scan of a drive where the other robot crosses the rays hits the same geoms at the same
+    distances, to the bit."""
+    sim = Simulation(build, RunOptions(strategy="fixed_step", service_port=0, port_base=0))
+    try:
+        m = sim.model
+        poisoned = mujoco.MjData(m)
+        for name in dir(poisoned):
+            value = getattr(poisoned, name, None)
+            if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+                value[...] = np.nan
+        world = ("geom_xpos", "geom_xmat", "xipos", "ximat")
+        roots_hit = set()
+        scans = 0
+        for frame in range(180):
+            for commands, robot in ((COMMANDS, "robot"), (OTHER, "other")):
+                if frame in commands:
+                    v, w = commands[frame]
+                    sim.receive(sim.by_name[f"{robot}.motion"], {"v": v, "w": w})
+            sim.frame()
+            sim.answer()
+            for fqn in ("robot.sick", "robot.velodyne"):
+                laser = sim.by_name[fqn].instance
+                if laser._sample is None:
+                    continue  # no scan at this frame
+                scans += 1
+                assert len(laser.local_data["range_list"]) == laser.nray  # the cast, in the live MjData
+                dist, geomid = laser._dist.copy(), laser._geomid.copy()
+                for name in world:
+                    getattr(poisoned, name)[...] = getattr(sim.data, name)
+                laser.sim = SimpleNamespace(model=m, data=poisoned)
+                try:
+                    in_poisoned = laser.cast(laser._from, float(laser.properties.laser_range))
+                finally:
+                    laser.sim = sim
+                assert dist.tobytes() == in_poisoned[0].tobytes() and (geomid == in_poisoned[1]).all(), (fqn, frame)
+                roots_hit |= set(m.body_rootid[m.geom_bodyid[geomid[geomid >= 0]]].tolist())
+        own = m.body_rootid[sim.by_name["robot.sick"].instance.body_id]
+        assert scans > 200 and roots_hit - {0, own}  # the other robot seen
     finally:
         sim.close()
 
