@@ -13,8 +13,7 @@ class GPS(SampledSensor):
     """Position of the sensor: scene coordinates (`simple`), or geodetic coordinates through WGS84 with
     the East-North-Up velocity (`raw`), plus UTC date, time and heading (`extended`). The geodetic
     levels need the environment properties `longitude`, `latitude` (degrees) and `altitude` (m) of the
-    scene origin, and optionally `angle_against_north` (degrees). A tick reads the sensor's pose; the
-    coordinates are computed when the data is read (SampledSensor)."""
+    scene origin, and optionally `angle_against_north` (degrees)."""
 
     short_descr = "GPS: scene or geodetic position, velocity, date, time and heading"
     builder_name = "GPS"

@@ -27,10 +27,7 @@ class IMU(SampledSensor):
     (MuJoCo's `accelerometer` sensor is not used: it reads the forward pass's acceleration, which the
     implicit integration of the stiff base velocity servos does not follow — 30 % off in a turn.) In
     Position mode (robots moved kinematically, fixed robots) velocities are finite differences of the
-    sensor's pose too.
-
-    A tick reads the pose and velocity and keeps them for the next tick's differences (its sample); the rates,
-    acceleration and field in the IMU's frame are computed when the data is read (SampledSensor)."""
+    sensor's pose too."""
 
     short_descr = "Angular velocity, linear acceleration (with gravity) and magnetic field, IMU frame"
     builder_name = "IMU"
