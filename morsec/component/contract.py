@@ -274,6 +274,11 @@ class Sensor(Device):
         sensor has its own format (cameras: pictures in base64); None: publish nothing this tick."""
         return self.local_data
 
+    def apply_modifiers(self, modifiers: list[Modifier]) -> None:
+        """Run the scene's modifiers on this tick's data, in order (after default_action)."""
+        for modifier in modifiers:
+            modifier.modify(self.local_data)
+
 
 class SampledSensor(Sensor):
     """A sensor whose data at a tick follows from a few numbers read at that tick, its sample (a pose; the
@@ -281,16 +286,25 @@ class SampledSensor(Sensor):
     Its tick only takes the sample; `local_data` is computed from the last sample when something reads it (a
     stream with a reader, a service, a modifier, a recording, another component): the same data as if
     computed at every tick, at no cost for the ticks nobody reads. A subclass implements `sample()` (read at
-    every tick) and `compute(*sample)` (fills local_data), and its data must follow from the last sample
-    alone, never from what earlier ticks computed (those may never be computed)."""
+    every tick) and `compute(*sample)`, which fills every field of local_data but the timestamp; its data
+    must follow from the last sample alone, never from what earlier ticks computed (those may never be
+    computed). A deferrable modifier (Modifier.deferrable: Gaussian noise) draws at the tick and applies
+    when the data is read; any other runs at the tick, and so computes the data there."""
 
     _sample: tuple | None = None  # the last tick's sample, while local_data is not computed from it yet
+    # (modifier, what it drew) of the deferrable modifiers of the ticks since the last sample, not applied yet
+    _deferred: list[tuple[Modifier, Any]] | None = None
 
     @property  # type: ignore[override]
     def local_data(self) -> OrderedDict[str, Any]:
-        if self._sample is not None:
-            sample, self._sample = self._sample, None
-            self.compute(*sample)
+        sample, deferred = self._sample, self._deferred
+        if sample is not None or deferred is not None:
+            self._sample = self._deferred = None
+            if sample is not None:
+                self.compute(*sample)
+            if deferred is not None:
+                for modifier, drawn in deferred:
+                    modifier.apply(self.local_dict, drawn)
         return self.local_dict
 
     @local_data.setter
@@ -298,10 +312,24 @@ class SampledSensor(Sensor):
         self.local_dict = value  # the dict itself: the loop writes the timestamp in it, computing nothing
 
     def default_action(self) -> None:
-        self._sample = self.sample()
+        sample = self.sample()
+        if sample is not None:  # a new sample: the modifiers deferred since the last one applied to data that
+            self._sample, self._deferred = sample, None  # compute() overwrites (deferrable: its fields only)
 
-    def sample(self) -> tuple:
-        """What local_data at this tick is computed from (read from MuJoCo at the tick)."""
+    def apply_modifiers(self, modifiers: list[Modifier]) -> None:
+        for modifier in modifiers:
+            if modifier.deferrable:
+                drawn = modifier.draw()  # at the tick, read or not: the same draws in the same order
+                if self._deferred is None:
+                    self._deferred = [(modifier, drawn)]
+                else:
+                    self._deferred.append((modifier, drawn))
+            else:
+                modifier.modify(self.local_data)  # computes the data and applies the deferred ones first
+
+    def sample(self) -> tuple | None:
+        """What local_data at this tick is computed from (read from MuJoCo at the tick); None: this tick
+        takes no sample, the data stays the last one's."""
         raise NotImplementedError
 
     def compute(self, *sample: Any) -> None:

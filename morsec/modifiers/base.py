@@ -18,6 +18,11 @@ class Modifier:
     # environment property read when a parameter is not given: {param: env property}
     env_defaults: ClassVar[dict[str, str]] = {}
     needs_geo: ClassVar[bool] = False  # needs the environment's longitude, latitude and altitude
+    # True: what modify() does to a tick's data follows from that data and what draw() takes at that tick
+    # alone (modify(data) is apply(data, draw())), and it writes only fields the sensor computes: on a
+    # SampledSensor it draws at the tick and applies when the data is read (SampledSensor.apply_modifiers).
+    # False (a modifier with state, e.g. one that integrates): it runs at the tick, which computes the data
+    deferrable: ClassVar[bool] = False
 
     def __init__(self, params: ModifierParams, rng: np.random.Generator, sim: Any = None):
         self.params = params
@@ -33,4 +38,12 @@ class Modifier:
         return cls.Params.model_validate(values)
 
     def modify(self, data: dict) -> None:
+        raise NotImplementedError
+
+    def draw(self) -> Any:
+        """A deferrable modifier: what it takes at a tick (its noise), for apply()."""
+        raise NotImplementedError
+
+    def apply(self, data: dict, drawn: Any) -> None:
+        """A deferrable modifier: change the tick's data with what draw() took at that tick."""
         raise NotImplementedError

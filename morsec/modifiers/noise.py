@@ -29,8 +29,10 @@ BATCH = 512  # ticks of noise drawn at once: one numpy call per 512 ticks instea
 
 class GaussianNoise(Modifier):
     """Draws zero-mean Gaussian noise for a fixed list of standard deviations, a row per tick (the draws
-    come in batches, from the modifier's own seeded stream: same seed, same noise)."""
+    come in batches, from the modifier's own seeded stream: same seed, same noise). Deferrable: a row is
+    drawn at every tick, whether or not the data is read, so the noise a tick gets never depends on reads."""
 
+    deferrable = True
     stds: list[float] = []
 
     def draw(self) -> list[float]:
@@ -39,6 +41,9 @@ class GaussianNoise(Modifier):
             rows = self._rows = self.rng.normal(0.0, self.stds, size=(BATCH, len(self.stds))).tolist()
             rows.reverse()
         return rows.pop()
+
+    def modify(self, data: dict) -> None:
+        self.apply(data, self.draw())
 
 
 class PoseNoise(GaussianNoise):
@@ -58,8 +63,8 @@ class PoseNoise(GaussianNoise):
                       [(a, _std(p.rot_std, a), True) for a in angles]
         self.stds = [std for _, std, _ in self.fields]
 
-    def modify(self, data: dict) -> None:
-        for (field, _, angle), n in zip(self.fields, self.draw()):
+    def apply(self, data: dict, drawn: list[float]) -> None:
+        for (field, _, angle), n in zip(self.fields, drawn):
             if field in data:
                 value = float(data[field]) + n
                 data[field] = normalize_angle(value) if angle else value
@@ -92,8 +97,8 @@ class IMUNoise(GaussianNoise):
         p = self.params
         self.stds = [_std(p.gyro_std, a) for a in "xyz"] + [_std(p.accel_std, a) for a in "xyz"]
 
-    def modify(self, data: dict) -> None:
-        n0, n1, n2, n3, n4, n5 = self.draw()  # written out: the IMU ticks every frame
+    def apply(self, data: dict, drawn: list[float]) -> None:
+        n0, n1, n2, n3, n4, n5 = drawn  # written out
         if "angular_velocity" in data:
             x, y, z = data["angular_velocity"]
             data["angular_velocity"] = [float(x) + n0, float(y) + n1, float(z) + n2]

@@ -938,8 +938,8 @@ class Simulation:
         (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
         try:
             inst.default_action()
-            for modifier in comp.modifiers:
-                modifier.modify(inst.local_data)
+            if comp.modifiers:  # a SampledSensor's deferrable ones draw here and apply when its data is read
+                inst.apply_modifiers(comp.modifiers)
         except Unsupported:
             raise
         except Exception as err:

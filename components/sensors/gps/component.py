@@ -1,9 +1,7 @@
 import math
 import time
 
-import numpy as np
-
-from morsec.component import DataField, Level, Sensor
+from morsec.component import DataField, Level, SampledSensor
 from morsec.modifiers.coordinates import POSITION_OUT
 from morsec.modifiers.noise import PositionNoise
 
@@ -11,7 +9,7 @@ RAW = ("raw", "extended")
 STILL = 1e-6  # m/s: below this horizontal speed the heading is not observable
 
 
-class GPS(Sensor):
+class GPS(SampledSensor):
     """Position of the sensor: scene coordinates (`simple`), or geodetic coordinates through WGS84 with
     the East-North-Up velocity (`raw`), plus UTC date, time and heading (`extended`). The geodetic
     levels need the environment properties `longitude`, `latitude` (degrees) and `altitude` (m) of the
@@ -47,40 +45,52 @@ class GPS(Sensor):
     def start(self):
         self.xpos = self.sim.data.xpos[self.body_id]  # a view of its world position (MjData's arrays stay put)
 
-    def default_action(self):
-        local = self.local_data
-        local["x"], local["y"], local["z"] = self.xpos.tolist()
+    def sample(self):
+        return self.xpos.tolist(),
+
+    def compute(self, pos):
+        local = self.local_dict
+        local["x"], local["y"], local["z"] = pos
 
 
 class RawGPS(GPS):
     def start(self):
+        super().start()
         self.geo = self.sim.geo  # ValueError (the simulation does not start) without geodetic properties
-        self.previous_enu = self.geo.to_enu(self.position())
-        self.enu_velocity = np.zeros(3)
+        self.previous_pos = self.xpos.tolist()
 
-    def default_action(self):
-        enu = self.geo.to_enu(self.position())
+    def sample(self):
+        # the position now and at the previous tick: the velocity is their difference in ENU
+        pos, previous_pos = self.xpos.tolist(), self.previous_pos
+        self.previous_pos = pos
+        return pos, previous_pos
+
+    def compute(self, pos, previous_pos):
+        enu = self.geo.to_enu(pos)
         # finite difference over the nominal period, as MORSE (a kinematic move is seen too)
-        self.enu_velocity = (enu - self.previous_enu) * self.frequency
-        self.previous_enu = enu
-        lat, lon, alt = self.geo.to_geodetic(self.position())
-        self.local_data.update(longitude=float(lon), latitude=float(lat), altitude=float(alt),
+        self.enu_velocity = (enu - self.geo.to_enu(previous_pos)) * self.frequency
+        lat, lon, alt = self.geo.to_geodetic(pos)
+        self.local_dict.update(longitude=float(lon), latitude=float(lat), altitude=float(alt),
                                velocity=[float(v) for v in self.enu_velocity])
 
 
 class ExtendedGPS(RawGPS):
-    def default_action(self):
-        super().default_action()
-        utc = time.gmtime(float(self.local_data["timestamp"]))
-        self.local_data["date"] = time.strftime("%d%m%y", utc)
-        self.local_data["time"] = time.strftime("%H%M%S", utc)
+    def sample(self):
+        return *super().sample(), self.rotation().copy()
+
+    def compute(self, pos, previous_pos, rotation):
+        super().compute(pos, previous_pos)
+        local = self.local_dict
+        utc = time.gmtime(float(local["timestamp"]))  # the tick's: the loop stamps every tick
+        local["date"] = time.strftime("%d%m%y", utc)
+        local["time"] = time.strftime("%H%M%S", utc)
         east, north = self.enu_velocity[0], self.enu_velocity[1]
         if abs(east) < STILL and abs(north) < STILL:
-            self.local_data["heading"] = float("inf")  # not observable standing still
+            local["heading"] = float("inf")  # not observable standing still
         else:
-            forward = self.geo.to_enu(self.rotation()[:, 0])
+            forward = self.geo.to_enu(rotation[:, 0])
             heading = math.degrees(math.atan2(forward[0], forward[1])) % 360.0
-            self.local_data["heading"] = heading if heading < 360.0 else 0.0
+            local["heading"] = heading if heading < 360.0 else 0.0
 
 
 COMPONENT = GPS

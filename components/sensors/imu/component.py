@@ -5,7 +5,7 @@ import math
 import mujoco
 import numpy as np
 
-from morsec.component import ComputationModeProperties, DataField, GeomagneticDateProperties, Sensor
+from morsec.component import ComputationModeProperties, DataField, GeomagneticDateProperties, SampledSensor
 from morsec.kits.geomagnetism import decimal_year, field_in_scene
 from morsec.kits.geometry import matrix_to_quat, transpose_apply
 from morsec.modifiers.noise import IMUNoise
@@ -16,7 +16,7 @@ RELOCATE_M = 1000.0  # the geomagnetic field is recomputed when the sensor has m
 XBODY = int(mujoco.mjtObj.mjOBJ_XBODY)  # the body's own frame (see Component.velocity)
 
 
-class IMU(Sensor):
+class IMU(SampledSensor):
     """Inertial measurement unit: body rates, specific force (gravity included: +9.81 on z at rest)
     and the Earth's magnetic field, all in the IMU's own frame.
 
@@ -70,30 +70,41 @@ class IMU(Sensor):
             self.geo = None
             log.info("%s: no geodetic environment properties: magnetic_field stays zero", self.name)
 
-    def default_action(self):
+    def sample(self):
         now = self.sim.clock.elapsed
         dt = now - self.previous_time
         if dt < 1e-9:
-            return
+            return None  # no time passed: no new sample, the data stays
         rot = self.xmat.tolist()  # row-major 3x3, plain floats: this ticks every frame
         pos = self.xpos.tolist()
+        previous_rot = None
         if self.mode == "Velocity":  # Component.velocity(local=False), written out
             mujoco.mj_objectVelocity(self.sim.model, self.sim.data, XBODY, self.body_id, self._velocity, 0)
             velocity = self._velocity.tolist()
-            vel, rates = velocity[3:], transpose_apply(rot, velocity[:3])
+            vel, angular = velocity[3:], velocity[:3]  # world frame
         else:
             vel = [(p - q) / dt for p, q in zip(pos, self.previous_pos)]
+            angular, previous_rot = None, self.previous_rot
+        previous_vel = self.previous_vel
+        self.previous_time, self.previous_pos, self.previous_rot, self.previous_vel = now, pos, rot, vel
+        # the field's relocation is checked at every tick: where it was last computed follows the ticks
+        return rot, previous_rot, angular, vel, previous_vel, dt, self._field(pos)
+
+    def compute(self, rot, previous_rot, angular, vel, previous_vel, dt, field):
+        if angular is not None:
+            rates = transpose_apply(rot, angular)
+        else:
             rates = np.zeros(3)
-            relative = np.reshape(self.previous_rot, (3, 3)).T @ np.reshape(rot, (3, 3))
+            relative = np.reshape(previous_rot, (3, 3)).T @ np.reshape(rot, (3, 3))
             mujoco.mju_quat2Vel(rates, matrix_to_quat(relative), dt)
             rates = rates.tolist()
-        (g0, g1, g2), (p0, p1, p2), (v0, v1, v2) = self.gravity, self.previous_vel, vel
+        (g0, g1, g2), (p0, p1, p2), (v0, v1, v2) = self.gravity, previous_vel, vel
         # specific force: the acceleration minus gravity (gravity's reaction), in the IMU frame
         accel = transpose_apply(rot, ((v0 - p0) / dt - g0, (v1 - p1) / dt - g1, (v2 - p2) / dt - g2))
-        self.previous_time, self.previous_pos, self.previous_rot, self.previous_vel = now, pos, rot, vel
-        self.local_data["angular_velocity"] = list(rates)
-        self.local_data["linear_acceleration"] = list(accel)
-        self.local_data["magnetic_field"] = list(transpose_apply(rot, self._field(pos)))
+        local = self.local_dict
+        local["angular_velocity"] = list(rates)
+        local["linear_acceleration"] = list(accel)
+        local["magnetic_field"] = list(transpose_apply(rot, field))
 
     def _field(self, pos):
         if self.geo is None:

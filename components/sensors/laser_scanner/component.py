@@ -13,7 +13,14 @@ One `mujoco.mj_multiRay` call per scan, no Python loop over rays:
   duration of the call and put back right after, so the scanner never sees its own robot. Group 5
   geoms are therefore never seen by a laser;
 * results are converted with numpy: a hit point in the sensor frame is the ray's unit direction (sensor
-  frame) times the hit distance, because the rays start at the sensor's origin.
+  frame) times the hit distance, because the rays start at the sensor's origin;
+* the rays are cast when the data is read (SampledSensor), on the world as it was at the scan: a scan copies
+  what `mj_multiRay` reads that the run changes (MjData's geom poses and bodies' inertial frames, which the
+  bounding volumes follow; the model's geom groups) and the sensor's position; a read puts those copies in
+  place for the cast and the live values back after it. A scan nobody reads casts nothing
+  (tests/test_sampled_sensors.py checks, on the installed MuJoCo, that a cast reads nothing else of MjData).
+  In a model with flexes (which morsec's compiler does not write; a user's MJCF template could), whose
+  vertices a cast reads too, unchecked, the rays are cast at the scan.
 
 In `local_data` the three lists are numpy arrays (point_list N x 3, range_list and remission_list N),
 fresh at every scan: building ~4000 Python objects per Hokuyo scan would cost more than the ray cast
@@ -131,6 +138,15 @@ class LaserScanner(SampledSensor):
             matid = m.geom_matid
             specular[:m.ngeom] = np.where(matid >= 0, m.mat_specular[np.maximum(matid, 0)], DEFAULT_SPECULAR)
             self._remission = specular
+        # what a cast reads that the run changes, copied at each scan: MjData's geom poses and bodies' inertial
+        # frames (the bodies' bounding boxes) and the geoms' groups (a waypoint's marker turns visual). None: cast
+        # at the scan (flexes)
+        d = self.sim.data
+        self._world = None if m.nflex else [d.geom_xpos, d.geom_xmat, d.xipos, d.ximat, m.geom_group]
+        self._scanned = [np.empty_like(live) for live in self._world or ()]  # the last scan's world
+        self._live = [np.empty_like(live) for live in self._world or ()]  # the live world, kept during a cast
+        self._from = np.empty(3)  # the sensor's position at the last scan
+        self._xpos, self._xmat = d.xpos[self.body_id], d.xmat[self.body_id]
         self.local_data["point_list"] = np.zeros((self.nray, 3))
         self.local_data["range_list"] = np.full(self.nray, float(self.properties.laser_range))
         if self._rssi:
@@ -142,30 +158,49 @@ class LaserScanner(SampledSensor):
         np.matmul(self._dirs, rot.T, out=self._vec)
         return self._dirs
 
-    def cast(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-        """Cast every ray once: (sensor-frame directions, distances with -1 for misses, geom ids, range)."""
-        m, d, b = self.sim.model, self.sim.data, self.body_id
-        laser_range = float(self.properties.laser_range)
-        dirs = self.world_directions(d.xmat[b].reshape(3, 3))
+    def cast(self, pos: np.ndarray, laser_range: float) -> tuple[np.ndarray, np.ndarray]:
+        """Cast the rays of `_vec` from `pos` in the world MjData holds: (distances with -1 for misses, geom
+        ids), in buffers the next cast rewrites."""
+        m = self.sim.model
         own = self._own
         if own is not None:
             m.geom_group[own] = HIDDEN_GROUP
         try:
-            mujoco.mj_multiRay(m, d, d.xpos[b], self._vec_flat, RAY_MASK, 1, -1, self._geomid, self._dist,
+            mujoco.mj_multiRay(m, self.sim.data, pos, self._vec_flat, RAY_MASK, 1, -1, self._geomid, self._dist,
                                None, self.nray, laser_range)
         finally:
             if own is not None:
                 m.geom_group[own] = self._own_groups
-        return dirs, self._dist, self._geomid, laser_range
+        return self._dist, self._geomid
 
-    # ---- a tick casts the rays (the world as it is then); the points and ranges are computed from them when
-    # read (SampledSensor): nothing to compute at the scans nobody reads
+    # ---- a scan turns the rays into the world and copies the world as they would see it; they are cast when
+    # the data is read (SampledSensor): nothing is cast at the scans nobody reads
     def sample(self) -> tuple:
-        # the cast's buffers, not copied: only the next scan rewrites them, and its sample replaces this one
-        dirs, dist, geomid, laser_range = self.cast()
-        return dirs, dist, geomid if self._rssi else None, laser_range
+        # into buffers, not copies: only the next scan rewrites them, and its sample replaces this one
+        dirs = self.world_directions(self._xmat.reshape(3, 3))
+        laser_range = float(self.properties.laser_range)
+        np.copyto(self._from, self._xpos)
+        if self._world is None:
+            return dirs, laser_range, *self.cast(self._from, laser_range)
+        for live, scanned in zip(self._world, self._scanned):
+            np.copyto(scanned, live)
+        return dirs, laser_range, None, None
 
-    def compute(self, dirs: np.ndarray, dist: np.ndarray, geomid: np.ndarray | None, laser_range: float) -> None:
+    def compute(self, dirs: np.ndarray, laser_range: float, dist: np.ndarray | None, geomid: np.ndarray | None) -> None:
+        if dist is None:  # cast now in the scan's world
+            world, live = self._world or (), self._live
+            for now, kept, scanned in zip(world, live, self._scanned):
+                np.copyto(kept, now)
+                np.copyto(now, scanned)
+            try:
+                dist, geomid = self.cast(self._from, laser_range)
+            finally:
+                for now, kept in zip(world, live):
+                    np.copyto(now, kept)
+        self.convert(dirs, dist, geomid if self._rssi else None, laser_range)
+
+    def convert(self, dirs: np.ndarray, dist: np.ndarray, geomid: np.ndarray | None, laser_range: float) -> None:
+        """Points, ranges (and remissions) from a cast."""
         hit = (dist >= 0.0) & (dist <= laser_range)
         points = dirs * np.where(hit, dist, 0.0)[:, None]
         points += 0.0  # a missed ray's negative direction components give -0.0: MORSE writes plain 0.0
