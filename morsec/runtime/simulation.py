@@ -219,6 +219,9 @@ class Simulation:
             self._handles = list(handles.values())
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
+            # MuJoCo's list of contacts, taken once: it follows the contacts of every step (their number too),
+            # and making it anew costs more than reading it
+            self._contacts = self.data.contact
             self._contact_pairs = b""  # the contacts' geom pairs (bytes) last looked at, and the robots touching
             self._contact_touching: set[int] = set()
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
@@ -501,7 +504,7 @@ class Simulation:
         MuJoCo found last: found once for all robots until the contacts change (the same geom pairs as the
         last time they were looked at: the same robots, found again only when they differ)."""
         if self._touching is None:
-            geoms = self.data.contact.geom
+            geoms = self._contacts.geom
             pairs = geoms.tobytes()  # cheaper than tolist, and all a robot resting or driving on needs
             if pairs != self._contact_pairs:
                 self._contact_pairs = pairs
@@ -1019,7 +1022,7 @@ class Stability:
     """MuJoCo resets the whole world (every robot back to its start) when a value of its state is NaN, Inf
     or huge. That reset is turned off; instead, after a frame that made MuJoCo warn, only the robots and
     objects whose state went bad are put back where they were before the frame, at rest, and the others
-    keep what the frame did to them. Per frame: two array copies and three counters read (about 1 us)."""
+    keep what the frame did to them. Per frame: two array copies and three counters read (well under 1 us)."""
 
     BAD_QPOS = int(mujoco.mjtWarning.mjWARN_BADQPOS)
     BAD_QVEL = int(mujoco.mjtWarning.mjWARN_BADQVEL)
@@ -1029,11 +1032,11 @@ class Stability:
     def __init__(self, model, data, initial_qpos: np.ndarray):
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
         self.initial_qpos = initial_qpos
-        # the state before the frame: qpos then qvel, copied by one call (mj_getState)
+        # the state before the frame, qpos and qvel, copied through memoryviews of both sides (MjData's arrays
+        # stay put): a slice assignment of memoryviews is a plain copy, cheaper than a numpy or MuJoCo call
         self.model, self.data = model, data
-        self.spec = int(mujoco.mjtState.mjSTATE_QPOS | mujoco.mjtState.mjSTATE_QVEL)
-        self.state = np.zeros(mujoco.mj_stateSize(model, self.spec))
-        self.qpos, self.qvel = self.state[:model.nq], self.state[model.nq:]  # views of it
+        self.qpos, self.qvel = np.zeros(model.nq), np.zeros(model.nv)
+        self._copies = ((memoryview(self.qpos), memoryview(data.qpos)), (memoryview(self.qvel), memoryview(data.qvel)))
         self.remember()
         # a view of MuJoCo's three counters of bad values (they follow one another): reading it costs nothing
         self.numbers = data.warning.number[self.BAD_QPOS:self.BAD_QACC + 1]
@@ -1046,7 +1049,9 @@ class Stability:
         self.reported: set[int] = set()
 
     def remember(self) -> None:
-        mujoco.mj_getState(self.model, self.data, self.state, self.spec)
+        (qpos, live_qpos), (qvel, live_qvel) = self._copies
+        qpos[:] = live_qpos
+        qvel[:] = live_qvel
 
     def check(self, model, data) -> None:
         warnings = self.numbers.tolist()
