@@ -24,14 +24,9 @@ child process twice, for --callgrind-duration (2 simulated s; 0.25 for the fleet
 instructions each) and for twice as long, and the difference is the instructions of that many frames
 (start-up cancels out), with one OpenBLAS thread and PYTHONHASHSEED=0 (see callgrind_frames).
 
-Instructions per frame measured last (docs/running.md#performance): reference 1.14, sensors 1.14, fleet
-1.01. The reference stays above target: what is left is the Python each tick needs for MORSE's results
-(motion_vw's trim of a held command and ground friction, the ground-contact check, the loop: ~100k
-instructions a frame for the reference scene, where a Python call costs 300-500 instructions on pyenv's
-CPython 3.11 without PGO). The pose, odometry, IMU, GPS and laser scanner sensors compute their data when
-it is read (SampledSensor; Gaussian noise draws at the tick and is added then; a laser casts its rays then,
-on the world its scan copied): with no client, their ticks only sample.
-Counts move by up to 1% with the heap's layout (any change of code shifts where MuJoCo's arrays fall).
+Where each scene stands, and what the difference is made of: docs/running.md#performance (the figures
+are kept there only). Counts move by up to 1% with the heap's layout (any change of code shifts where
+MuJoCo's arrays fall).
 """
 
 from __future__ import annotations

@@ -93,7 +93,7 @@ class RobotHandle:
             return None
         first, second, third = self.servo
         if second == first + 1 and third == first + 2 and ctrl.flags["C_CONTIGUOUS"] and ctrl.dtype == np.float64:
-            return functools.partial(_THREE_FLOATS.pack_into, memoryview(ctrl).cast("B"), first * ctrl.itemsize)
+            return functools.partial(_THREE_FLOATS.pack_into, ctrl.data.cast("B"), first * ctrl.itemsize)
 
         def write(vx: float, vy: float, wz: float) -> None:
             ctrl[first], ctrl[second], ctrl[third] = vx, vy, wz

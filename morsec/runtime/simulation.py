@@ -690,67 +690,74 @@ class Simulation:
     def run(self, duration: float | None = None) -> None:
         next_poll = 0.0
         started = None
+        end = float("inf") if duration is None else duration - 1e-9
         # the loop stood still (a viewer's pause, a client awaited, a new actuator stream's first message
         # awaited): that wall-clock time is not owed, the frame after the next one comes a frame's time later
         # (a burst of two frames would run one between a stream's message and the client's reply to it)
         stood_still = False
+        # read at every frame, and none of them replaced while the simulation runs
+        clock, requests, poller, time_services = self.clock, self.requests, self.poller, self.time_services
+        sync, hold, view = self.sync, self.hold, self.view
         try:
             while not self.quitting:
-                if duration is not None and self.clock.elapsed >= duration - 1e-9:
+                if clock.elapsed >= end:
                     break
                 # sockets are polled every frame, but at most every POLL_PERIOD of wall time: a fixed_step
                 # loop runs frames far faster than any client can tell apart (lockstep polls every frame, and
                 # so does a loop that answered a request within CONVERSATION: the client waits on its answers)
                 now = time.perf_counter()
-                if (now >= next_poll or now - self.requests.last_request < CONVERSATION
-                        or (self.sync is not None and self.sync.engaged)):
-                    self.poller.poll(0.0)
+                if (now >= next_poll or now - requests.last_request < CONVERSATION
+                        or (sync is not None and sync.engaged)):
+                    poller.poll(0.0)
                     next_poll = now + POLL_PERIOD
                 if self.quitting:
                     break
                 if not self.client_came:  # --wait-for-client: time starts with the client
-                    if self.sync is not None and self.sync.engaged:
+                    if sync is not None and sync.engaged:
                         self.client_came = True
                     else:
-                        self.poller.poll(MAX_POLL_WAIT / 20)
+                        poller.poll(MAX_POLL_WAIT / 20)
                         self._flush()
                         stood_still = True
                         continue
-                if self.view is not None and self.view.paused:  # the viewer's pause (space): no frame runs
-                    self.view.sync()
+                if view is not None and view.paused:  # the viewer's pause (space): no frame runs
+                    view.sync()
                     self._pause(PAUSED_POLL)
                     stood_still = True
                     continue
                 if stood_still:  # the wall clock's pace from now
-                    self.clock.restart()
+                    clock.restart()
                     stood_still = False
-                if self.sync is not None and self.sync.engaged:
-                    if not self.sync.take():
-                        self.poller.poll(0.01)
+                if sync is not None and sync.engaged:
+                    if not sync.take():
+                        poller.poll(0.01)
                         self._flush()
                         continue
-                elif self.hold is not None and self.hold.opened:
-                    held = self.hold.holding()  # a new actuator stream: its first message applies at this frame
+                elif hold is not None and hold.opened:
+                    held = hold.holding()  # a new actuator stream: its first message applies at this frame
                     if held > 0:
-                        self.poller.poll(min(held, MAX_POLL_WAIT))
+                        poller.poll(min(held, MAX_POLL_WAIT))
                         self._flush()
                         stood_still = True
                         continue
                 if started is None:
                     started = time.perf_counter()
                 self.frame(spread=True)  # ends with a flush
-                if self.view is not None:
-                    self.view.sync()
-                if self.time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
+                if view is not None:
+                    view.sync()
+                # (each call below is made only when there is something for it to do: they are at every frame)
+                # the sleeps that end at this frame: their answers leave ANSWER_GAP after the frame's messages
+                if time_services.sleepers and time_services.ending():
                     gap = max(ANSWER_GAP, self.last_reader_opened + READER_POLL - time.perf_counter())
                     self._pause(gap)
                     if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
-                        self.clock.restart_a_frame_later()  # calling get() after its answer gets its message
+                        clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 # the answers, and the request lines still waiting (a client conversing: each flush serves a
                 # share of them) sent now; else the frame's own flush left nothing to do
-                if self.answer() or now - self.requests.last_request < CONVERSATION:
+                answered = (time_services.sleepers or time_services.deferred or requests.waiting) and self.answer()
+                if answered or now - requests.last_request < CONVERSATION:
                     self._flush()
-                delay = self.clock.delay(self._paced())
+                delay = clock.delay(hold is not None and bool(hold.awake) and self._paced())
                 if delay > 0:
                     self._wait(delay)
         finally:
@@ -1036,7 +1043,7 @@ class Stability:
         # stay put): a slice assignment of memoryviews is a plain copy, cheaper than a numpy or MuJoCo call
         self.model, self.data = model, data
         self.qpos, self.qvel = np.zeros(model.nq), np.zeros(model.nv)
-        self._copies = ((memoryview(self.qpos), memoryview(data.qpos)), (memoryview(self.qvel), memoryview(data.qvel)))
+        self._copies = ((self.qpos.data, data.qpos.data), (self.qvel.data, data.qvel.data))  # (.data: a memoryview)
         self.remember()
         # a view of MuJoCo's three counters of bad values (they follow one another): reading it costs nothing
         self.numbers = data.warning.number[self.BAD_QPOS:self.BAD_QACC + 1]
