@@ -507,15 +507,40 @@ class LowPose(Pose):
 COMPONENT = LowPose
 '''
 
+# a pose sensor whose noise is a component's own subclass of PoseNoise writing its own modify(): a pose's noise
+# is added when its data is read (deferred), but a modify() of its own must still run, at the tick
+BIASED_POSE = '''from morsec.component import component_class
+from morsec.modifiers.noise import PoseNoise
+
+Pose = component_class("sensors", "pose")
+
+
+class BiasedNoise(PoseNoise):
+    def modify(self, data):
+        super().modify(data)
+        data["x"] = data["x"] + 10.0
+
+
+class BiasedPose(Pose):
+    """A pose sensor for tests, its noise biased."""
+
+    builder_name = "BiasedPose"
+    modifiers = {"noise": BiasedNoise}
+
+
+COMPONENT = BiasedPose
+'''
+
 
 @pytest.fixture(scope="module")
 def project(tmp_path_factory):
-    """A project with a sensor declaring `noise`, one declaring no modifier and a preset of `pose`."""
+    """A project with a sensor declaring `noise`, one declaring no modifier, a preset of `pose` and a pose
+    whose noise is its own."""
     root = tmp_path_factory.mktemp("project")
     (root / "morsec.toml").write_text('[project]\nname = "p"\ncomponents = ["components"]\n')
     sources = {"beacon": BEACON.format(note="", modifiers='modifiers = {"noise": PositionNoise}'),
                "quiet_beacon": BEACON.format(note=", no modifier", modifiers="pass"),
-               "low_pose": POSE_PRESET}
+               "low_pose": POSE_PRESET, "biased_pose": BIASED_POSE}
     for cid, source in sources.items():
         folder = root / "components" / "sensors" / cid
         folder.mkdir(parents=True)
@@ -551,8 +576,16 @@ def test_a_project_component_without_the_modifier_is_a_scene_error(project, tmp_
     with pytest.raises(SceneError) as err:
         with simulate(text, tmp_path, project=project):
             pass
-    assert ("modifiers[0].name: modifier 'noise' does not apply to 'quiet_beacon' (it applies to: beacon, gps, "
-            "gyroscope, imu, low_pose, odometry, pose)") in str(err.value)
+    assert ("modifiers[0].name: modifier 'noise' does not apply to 'quiet_beacon' (it applies to: beacon, "
+            "biased_pose, gps, gyroscope, imu, low_pose, odometry, pose)") in str(err.value)
+
+
+def test_a_noise_subclass_writing_its_own_modify_runs_it(project, tmp_path):
+    text = project_scene("{name: pose, type: biased_pose, modifiers: [{name: noise, pos_std: 0.0, rot_std: 0.0}]}")
+    with simulate(text, tmp_path, project=project) as h:
+        for _ in range(3):
+            h.step()
+            assert h.data("r.pose")["x"] == 10.0
 
 
 def test_a_component_declaring_an_unknown_modifier_names_its_file(tmp_path):

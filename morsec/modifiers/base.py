@@ -24,6 +24,13 @@ class Modifier:
     # False (a modifier with state, e.g. one that integrates): it runs at the tick, which computes the data
     deferrable: ClassVar[bool] = False
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        # a subclass that writes its own modify() but not apply() (a component's own noise, from PoseNoise) runs
+        # at the tick: deferred, only apply() would run, and its modify() never
+        if "modify" in cls.__dict__ and "apply" not in cls.__dict__ and "deferrable" not in cls.__dict__:
+            cls.deferrable = False
+
     def __init__(self, params: ModifierParams, rng: np.random.Generator, sim: Any = None):
         self.params = params
         self.rng = rng

@@ -220,7 +220,7 @@ class Simulation:
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             # MuJoCo's list of contacts, taken once: it follows the contacts of every step (their number too),
-            # and making it anew costs more than reading it
+            # and asking MjData for it at every frame cost more than reading it
             self._contacts = self.data.contact
             self._contact_pairs = b""  # the contacts' geom pairs (bytes) last looked at, and the robots touching
             self._contact_touching: set[int] = set()
@@ -752,12 +752,10 @@ class Simulation:
                     self._pause(gap)
                     if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
                         clock.restart_a_frame_later()  # calling get() after its answer gets its message
-                # the answers, and the request lines still waiting (a client conversing: each flush serves a
-                # share of them) sent now; else the frame's own flush left nothing to do
-                answered = (time_services.sleepers or time_services.deferred or requests.waiting) and self.answer()
-                if answered or now - requests.last_request < CONVERSATION:
-                    self._flush()
-                delay = clock.delay(hold is not None and bool(hold.awake) and self._paced())
+                if time_services.sleepers or time_services.deferred or requests.waiting:
+                    self.answer()
+                self._flush()
+                delay = self._delay()
                 if delay > 0:
                     self._wait(delay)
         finally:
@@ -773,7 +771,7 @@ class Simulation:
     def _paced(self) -> bool:
         """Whether fixed_step follows the wall clock now: a client is between two sleeps (SleepHold), and no
         lockstep client paces the loop."""
-        hold = self.hold
+        hold = self.hold  # (usually None or not awake: asked at every frame)
         return (hold is not None and bool(hold.awake) and not (self.sync is not None and self.sync.engaged)
                 and hold.pacing())
 
@@ -809,18 +807,14 @@ class Simulation:
             self._send_sensor_messages(self._spare() * MESSAGE_SHARE if spread else 0.0)
         self._flush()
 
-    def answer(self) -> bool:
+    def answer(self) -> None:
         """The end of a frame, after its messages: the sleeps that ended at it answered, the components'
-        asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time).
-        Whether there was any to answer (else there is nothing to flush)."""
+        asynchronous services that arrived before it started (MORSE's frame order, docs/running.md#time)."""
         time_services, requests = self.time_services, self.requests
-        woken = bool(time_services.sleepers or time_services.deferred)  # usually neither, at every frame
-        if woken:
+        if time_services.sleepers or time_services.deferred:  # else nothing to wake (usually, at every frame)
             time_services.wake()
         if requests.waiting:
             requests.start_waiting(self.clock.frames)
-            return True
-        return woken
 
     def step(self) -> None:
         m, d = self.model, self.data

@@ -19,6 +19,8 @@ One `mujoco.mj_multiRay` call per scan, no Python loop over rays:
   bounding volumes follow; the model's geom groups) and the sensor's position; a read puts those copies in
   place for the cast and the live values back after it. A scan nobody reads casts nothing
   (tests/test_sampled_sensors.py checks, on the installed MuJoCo, that a cast reads nothing else of MjData).
+  A cast also skips geoms whose colour or material is fully transparent (the model's rgba alphas): nothing
+  changes those during a run; something that did would have to be copied with the rest.
   In a model with flexes (which morsec's compiler does not write; a user's MJCF template could), whose
   vertices a cast reads too, unchecked, the rays are cast at the scan.
 
