@@ -16,21 +16,14 @@ def bounded(values, limit: float, what: str) -> np.ndarray:
     return array
 
 
-def bounded_floats(values, limit: float, what: str) -> tuple[float, ...]:
-    """bounded's check, the values as a tuple of floats: cheaper than an array for the few numbers of a
-    command given every tick (a 3-vector, the usual one, unrolled: a robot's speeds at every frame)."""
+def bounded_floats(values, limit: float, what: str) -> tuple[float, float, float]:
+    """bounded's check of a 3-vector (a robot's speeds, at every frame), as a tuple of floats: cheaper than an
+    array. ValueError for what is not 3 numbers."""
     try:
         x, y, z = values
-        floats: tuple[float, ...] = (float(x), float(y), float(z))
-    except (TypeError, ValueError):  # not 3 numbers
-        try:
-            floats = tuple(map(float, values))
-        except (TypeError, ValueError):
-            return tuple(bounded(values, limit, what).tolist())  # bounded's error for what is not numbers
-        for value in floats:
-            if not abs(value) <= limit:  # NaN fails the comparison too
-                bounded(floats, limit, what)
-        return floats
+        floats = (float(x), float(y), float(z))
+    except (TypeError, ValueError):  # not 3 numbers: bounded's error for what is not numbers, else the count's
+        raise ValueError(f"{what} must be 3 numbers, got {bounded(values, limit, what).size}") from None
     if not (abs(floats[0]) <= limit and abs(floats[1]) <= limit and abs(floats[2]) <= limit):  # NaN fails too
         bounded(floats, limit, what)
     return floats

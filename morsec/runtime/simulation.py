@@ -745,15 +745,12 @@ class Simulation:
                 self.frame(spread=True)  # ends with a flush
                 if view is not None:
                     view.sync()
-                # (each call below is made only when there is something for it to do: they are at every frame)
-                # the sleeps that end at this frame: their answers leave ANSWER_GAP after the frame's messages
-                if time_services.sleepers and time_services.ending():
+                if time_services.ending():  # their answers leave ANSWER_GAP after the frame's messages
                     gap = max(ANSWER_GAP, self.last_reader_opened + READER_POLL - time.perf_counter())
                     self._pause(gap)
                     if gap > ANSWER_GAP:  # the next frame a frame's time after the answers, as usual: a client
                         clock.restart_a_frame_later()  # calling get() after its answer gets its message
-                if time_services.sleepers or time_services.deferred or requests.waiting:
-                    self.answer()
+                self.answer()
                 self._flush()
                 delay = self._delay()
                 if delay > 0:
