@@ -17,7 +17,7 @@ from morsec.kits.geometry import (
     transpose_apply,
     transpose_times,
 )
-from morsec.runtime.robot import _mean_velocity
+from morsec.runtime.trim import mean_velocity
 
 
 def rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
@@ -73,4 +73,4 @@ def test_a_robots_mean_velocity_written_out_is_the_matrix_products_to_the_bit(he
         step = [b - a for a, b in zip(pos0, pos1)]
         start, end = transpose_apply(rot0, step), transpose_apply(rot1, step)
         expected = ((start[0] + end[0]) / 2.0 / dt, (start[1] + end[1]) / 2.0 / dt, wz / dt)
-        assert _mean_velocity(pos0, rot0, pos1, rot1, dt, heading) == expected
+        assert mean_velocity(pos0, rot0, pos1, rot1, dt, heading) == expected

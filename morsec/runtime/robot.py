@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import functools
-import math
 import struct
 
 import mujoco
@@ -17,6 +16,7 @@ from morsec.kits.geometry import (
     matrix_to_quat,
     quat_to_matrix,
 )
+from morsec.runtime import trim
 
 
 def free_joint(model, body: int) -> tuple[int, int] | None:
@@ -66,7 +66,7 @@ class RobotHandle:
         ids = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, mjcf_names.base_servo(name, axis))
                for axis in mjcf_names.BASE_SERVO_AXES]
         self.servo = ids if min(ids) >= 0 else None
-        self._follow: dict[str, _Follow] = {}  # the commands followed (see follow), by who drives
+        self._follow: dict[str, trim.Follow] = {}  # the commands followed (see follow), by who drives
         self.friction: float | None = None  # set_friction's value (None: Blender's default)
         self.damping = 0.0  # Blender's linear damping of its body (the robot class's `damping`)
         self._slid: tuple[float, float] | None = None  # (vx, vy) at the end of the last interval slid (coast)
@@ -246,61 +246,23 @@ class RobotHandle:
             self._touched = now
         return self._touched is not None and now - self._touched <= self.GROUND_MEMORY
 
-    # ---- following a held command. A velocity servo lags its target by (resisting force) / kv: the sideways
-    # friction of skidding wheels in a turn, a slope; a wheel-driven robot slips. MORSE sets the velocity
-    # itself (and its FixTurningSpeed was tuned so that a skid-steer robot turns at about w), so a command
-    # held unchanged is made exact by a trim added to what drives the robot, corrected at each call by what
-    # the robot missed over the last interval (its mean velocity, from its pose then and now)
-    TRIM_GAIN = 0.5  # the part of the last interval's error added to the trim at each call
-    TRIM_LIMIT = 0.05  # |trim| <= TRIM_LIMIT + fraction |command| (a robot held by a wall stays gentle)
-
+    # ---- following a held command (morsec.runtime.trim)
     def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> tuple[float, float, float]:
         """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
-        vertical for a ground robot): the command plus its trim. `key` names who drives (one trim each);
-        the trim along an axis is dropped when the command changes direction there, all when teleported.
-        It is corrected once the command has been held `settle` calls (what a robot still speeding up
-        misses is no slip: counted, it would wind the trim up)."""
+        vertical for a ground robot): the command plus its trim (trim.Follow). `key` names who drives (one trim
+        each); all trims are dropped when the robot is teleported. The trim is corrected once the command has
+        been held `settle` calls."""
         c0, c1, c2 = command
         return self._follow_floats(key, float(c0), float(c1), float(c2), fraction, settle)
 
     def _follow_floats(self, key: str, c0: float, c1: float, c2: float, fraction: float = 0.25,
                        settle: int = 2) -> tuple[float, float, float]:
-        """follow, the command given as floats. In plain floats: this runs at every tick of every robot
-        driven so, and numpy on 3-vectors costs more than the arithmetic (so do min and max, written out)."""
-        command = (c0, c1, c2)
+        """follow, the command given as floats."""
         state = self._follow.get(key)
         if state is None:
-            state = self._follow[key] = _Follow()
-        previous, mark = state.command, state.mark
-        now = (self.sim.clock.elapsed, self._xpos.tolist(), self._xmat.tolist())
-        state.command, state.mark = command, now
-        t0, t1, t2 = state.trim
-        if previous is None or mark is None or command != previous:
-            state.held = 0
-            if previous is not None:
-                p0, p1, p2 = previous
-                t0 = t0 if _sign(c0) == _sign(p0) else 0.0
-                t1 = t1 if _sign(c1) == _sign(p1) else 0.0
-                t2 = t2 if _sign(c2) == _sign(p2) else 0.0
-                state.trim = (t0, t1, t2)
-            return c0 + t0, c1 + t1, c2 + t2
-        held = state.held = state.held + 1
-        dt = now[0] - mark[0]
-        if held >= settle and held >= 2 and dt > 0:  # the last interval ran under this command throughout
-            v0, v1, v2 = _mean_velocity(mark[1], mark[2], now[1], now[2], dt, self.ground)
-            gain, bound = self.TRIM_GAIN, self.TRIM_LIMIT
-            # each trim plus the gain's share of the error, clamped to +-limit (as min(max(t, -limit), limit))
-            limit, t = bound + fraction * abs(c0), t0 + gain * (c0 - v0)
-            t = -limit if -limit > t else t
-            t0 = limit if limit < t else t
-            limit, t = bound + fraction * abs(c1), t1 + gain * (c1 - v1)
-            t = -limit if -limit > t else t
-            t1 = limit if limit < t else t
-            limit, t = bound + fraction * abs(c2), t2 + gain * (c2 - v2)
-            t = -limit if -limit > t else t
-            t2 = limit if limit < t else t
-            state.trim = (t0, t1, t2)
-        return c0 + t0, c1 + t1, c2 + t2
+            state = self._follow[key] = trim.Follow()
+        return state.drive(c0, c1, c2, self.sim.clock.elapsed, self._xpos.tolist(), self._xmat.tolist(), fraction,
+                           settle, self.ground)
 
     def displace(self, body_translation: np.ndarray, body_rotation: np.ndarray) -> None:
         if not self.free:
@@ -404,47 +366,6 @@ class RobotHandle:
         lever = self.centre_of_mass() - d.xipos[self.body_id]
         self._wrenches[key] = np.concatenate([force, torque + np.cross(lever, force)])
         d.xfrc_applied[self.body_id] = np.sum(list(self._wrenches.values()), axis=0)
-
-
-class _Follow:
-    """A command followed: the last one (vx, vy, wz), its trim, how many calls it is held, when and where."""
-
-    def __init__(self):
-        self.command: tuple[float, ...] | None = None
-        self.trim: tuple[float, ...] = (0.0, 0.0, 0.0)
-        self.held = 0
-        self.mark: tuple[float, list[float], list[float]] | None = None  # time, position, row-major rotation
-
-
-def _sign(x: float) -> int:
-    return (x > 0.0) - (x < 0.0)
-
-
-def _mean_velocity(pos0, rot0, pos1, rot1, dt: float, heading: bool) -> tuple[float, float, float]:
-    """(vx, vy, wz) of a body over an interval, from its poses at both ends (positions; rotations as
-    row-major 9-lists): velocity in its own frame, turn rate about its own z axis, or with `heading` about
-    the world's vertical (a ground robot's heading). Written out (the rotation between both ends,
-    geometry's times_transpose or transpose_times, the same sums in the same order): this runs at every tick
-    of every robot driven by velocity."""
-    a0, a1, a2, a3, a4, a5, a6, a7, a8 = rot0
-    b0, b1, b2, b3, b4, b5, b6, b7, b8 = rot1
-    if heading:  # rot1 rot0^T, in the world's frame
-        d00, d11, d22 = b0 * a0 + b1 * a1 + b2 * a2, b3 * a3 + b4 * a4 + b5 * a5, b6 * a6 + b7 * a7 + b8 * a8
-        d01, d02, d12 = b0 * a3 + b1 * a4 + b2 * a5, b0 * a6 + b1 * a7 + b2 * a8, b3 * a6 + b4 * a7 + b5 * a8
-        d10, d20, d21 = b3 * a0 + b4 * a1 + b5 * a2, b6 * a0 + b7 * a1 + b8 * a2, b6 * a3 + b7 * a4 + b8 * a5
-    else:  # rot0^T rot1, in the body's frame
-        d00, d11, d22 = a0 * b0 + a3 * b3 + a6 * b6, a1 * b1 + a4 * b4 + a7 * b7, a2 * b2 + a5 * b5 + a8 * b8
-        d01, d02, d12 = a0 * b1 + a3 * b4 + a6 * b7, a0 * b2 + a3 * b5 + a6 * b8, a1 * b2 + a4 * b5 + a7 * b8
-        d10, d20, d21 = a1 * b0 + a4 * b3 + a7 * b6, a2 * b0 + a5 * b3 + a8 * b6, a2 * b1 + a5 * b4 + a8 * b7
-    vx, vy, vz = (d21 - d12) / 2, (d02 - d20) / 2, (d10 - d01) / 2
-    sin = math.sqrt(vx * vx + vy * vy + vz * vz)
-    angle = math.atan2(sin, (d00 + d11 + d22 - 1.0) / 2.0)
-    wz = vz * (angle / sin) if sin > 1e-12 else vz
-    x, y, z = pos1[0] - pos0[0], pos1[1] - pos0[1], pos1[2] - pos0[2]
-    # the linear velocity in the frame half-way through: the mean of the displacement in the frames at both ends
-    # (transpose_apply's x and y, written out: z is not needed)
-    return (((a0 * x + a3 * y + a6 * z) + (b0 * x + b3 * y + b6 * z)) / 2.0 / dt,
-            ((a1 * x + a4 * y + a7 * z) + (b1 * x + b4 * y + b7 * z)) / 2.0 / dt, wz / dt)
 
 
 def _descends(m, body: int, ancestor: int) -> bool:
