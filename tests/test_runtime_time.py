@@ -635,3 +635,28 @@ def test_wait_for_client_starts_time_with_the_client_and_ends_the_run_when_it_le
     assert closing[-1] == "EXITING SIMULATION"
     simulated = float(closing[-2].split()[1])
     assert closing[-2].startswith("simulated ") and 0.5 <= simulated < 5.0 and "x real time)" in closing[-2]
+
+
+def test_time_statistics_are_the_mean_and_variance_of_the_frames_wall_times():
+    """`time statistics` (MORSE's mean_time, variance_time): the frames' wall-clock durations, here frames 20
+    and 60 ms long in turn, measured around the clock's own ticks."""
+    from morsec.runtime.clock import Clock
+
+    clock = Clock(60.0, "fixed_step", 1.0, relative=True)
+    durations = []
+    last = time.perf_counter()
+    clock.tick()  # the clock was made just before: its first frame lasts next to nothing
+    for k in range(6):
+        time.sleep(0.02 if k % 2 == 0 else 0.06)
+        now = time.perf_counter()
+        clock.tick()
+        durations.append(now - last)
+        last = now
+    stats = clock.statistics()
+    assert stats["frames"] == 7 and stats["simulated_time"] == pytest.approx(7 / 60)
+    samples = [0.0, *durations]
+    mean = sum(samples) / 7
+    variance = sum((s - mean) ** 2 for s in samples) / 6
+    assert stats["mean_time"] == pytest.approx(mean, rel=0.05)
+    assert stats["variance_time"] == pytest.approx(variance, rel=0.1)
+    assert stats["real_time_factor"] == pytest.approx((1 / 60) / mean, rel=0.05)

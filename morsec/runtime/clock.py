@@ -27,11 +27,11 @@ class Clock:
         self.elapsed = 0.0  # simulated seconds since the start: frames * dt (an attribute: read many times a frame)
         self._wall_anchor = _time.perf_counter()
         self._sim_anchor = 0.0
-        self._last_wall = self._wall_anchor
         self._paced = False  # fixed_step following the wall clock for now
-        self._n = 0
-        self._mean = 0.0
-        self._m2 = 0.0
+        # the frames' wall-clock durations, for `time statistics`: from the first start of one to the last end,
+        # and the sum of their squares (a tick adds one square: the mean and variance follow)
+        self._first_wall = self._last_wall = self._wall_anchor
+        self._squares = 0.0
 
     def now(self) -> float:
         """The timestamp sensors publish: epoch-based unless relative time was asked for."""
@@ -43,10 +43,7 @@ class Clock:
         wall = _time.perf_counter()
         sample = wall - self._last_wall
         self._last_wall = wall
-        n = self._n = self._n + 1
-        delta = sample - self._mean
-        mean = self._mean = self._mean + delta / n
-        self._m2 += delta * (sample - mean)
+        self._squares += sample * sample
 
     def delay(self, paced: bool = False) -> float:
         """Wall-clock seconds to wait before the next frame: 0 for fixed_step, unless `paced` (a client is
@@ -94,8 +91,9 @@ class Clock:
         self._sim_anchor -= self.dt
 
     def statistics(self) -> dict:
-        variance = self._m2 / (self._n - 1) if self._n > 1 else 0.0
-        mean = self._mean
+        n = self.frames
+        mean = (self._last_wall - self._first_wall) / n if n else 0.0
+        variance = max(0.0, self._squares - n * mean * mean) / (n - 1) if n > 1 else 0.0
         return {
             "mean_time": mean,
             "variance_time": variance,
