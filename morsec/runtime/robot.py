@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import functools
+import logging
+import math
+import os
 import struct
 
 import mujoco
@@ -17,6 +20,29 @@ from morsec.kits.geometry import (
     quat_to_matrix,
 )
 from morsec.runtime import trim
+
+log = logging.getLogger("morsec.robot")
+
+
+def warn_if_stale(module) -> bool:
+    """Whether a compiled module (docs/architecture.md#compiled-module) is older than its source beside it (edited,
+    pulled, merged since it was installed): `import` finds the compiled one first, which runs the old code. Said
+    on the log (an install writes both files within a second: so much is not counted)."""
+    compiled = module.__file__
+    if compiled.endswith(".py"):
+        return False
+    source = os.path.join(os.path.dirname(compiled), module.__name__.rpartition(".")[2] + ".py")
+    try:
+        stale = os.stat(source).st_mtime > os.stat(compiled).st_mtime + 2.0
+    except OSError:
+        return False
+    if stale:
+        log.warning("%s changed after it was compiled: the old compiled code runs until the package is installed "
+                    "again (pip install -e .)", source)
+    return stale
+
+
+warn_if_stale(trim)
 
 
 def free_joint(model, body: int) -> tuple[int, int] | None:
@@ -252,8 +278,10 @@ class RobotHandle:
         vertical for a ground robot): the command plus its trim (trim.Follow). `key` names who drives (one trim
         each); all trims are dropped when the robot is teleported. The trim is corrected once the command has
         been held `settle` calls."""
-        c0, c1, c2 = command
-        return self._follow_floats(key, float(c0), float(c1), float(c2), fraction, settle)
+        c0, c1, c2 = (float(c) for c in command)
+        if not (math.isfinite(c0) and math.isfinite(c1) and math.isfinite(c2)):
+            raise ValueError(f"{key}: a command must be finite numbers, got {list(command)}")
+        return self._follow_floats(key, c0, c1, c2, float(fraction), int(settle))
 
     def _follow_floats(self, key: str, c0: float, c1: float, c2: float, fraction: float = 0.25,
                        settle: int = 2) -> tuple[float, float, float]:
