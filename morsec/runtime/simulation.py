@@ -768,7 +768,7 @@ class Simulation:
     def _paced(self) -> bool:
         """Whether fixed_step follows the wall clock now: a client is between two sleeps (SleepHold), and no
         lockstep client paces the loop."""
-        hold = self.hold  # (usually None or not awake: asked at every frame)
+        hold = self.hold
         return (hold is not None and bool(hold.awake) and not (self.sync is not None and self.sync.engaged)
                 and hold.pacing())
 

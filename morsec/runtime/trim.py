@@ -30,7 +30,7 @@ class Follow:
         self.trim: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.held = 0
         self.time = 0.0  # simulated s of the last call
-        self.pos: list[float] = []  # the robot's position at the last call (empty: no call yet)
+        self.pos: list[float] = []  # the robot's position at the last call (set by the first)
         self.rot: list[float] = []  # ... and its rotation, row-major
 
     def drive(self, c0: float, c1: float, c2: float, time: float, pos: list[float], rot: list[float],
@@ -42,7 +42,7 @@ class Follow:
         previous, mark_time, mark_pos, mark_rot = self.command, self.time, self.pos, self.rot
         self.command, self.time, self.pos, self.rot = (c0, c1, c2), time, pos, rot
         t0, t1, t2 = self.trim
-        if previous is None or not mark_pos or (c0, c1, c2) != previous:
+        if previous is None or (c0, c1, c2) != previous:  # the first call, or a new command
             self.held = 0
             if previous is not None:
                 p0, p1, p2 = previous
