@@ -301,10 +301,18 @@ def _lock_entries(owner: str, locks: list[str], mass: float, site: str | None = 
              "kv": LOCK_GAIN_PER_KG * mass} for axis in LOCK_GEARS if axis in locks]
 
 
+# A site transmission costs MuJoCo, at every physics step, a dense Jacobian over all the model's dofs per actuator:
+# quadratic in the number of robots (128 ATRVs: three quarters of the step). A free joint's rotational dofs are
+# its body's angular velocity in the body's own frame, so a rate about the base's axes (the yaw servo; the angular
+# dampers, whose torque acts alike wherever applied) is a joint transmission on those dofs instead: the same
+# forces, to the rounding, at a cost that does not grow with the model. Linear velocities along the base's axes
+# are not dofs (the free joint's are the origin's, in the world frame): those stay site transmissions.
+
 def _servo(robot, cat: Catalogue, tree: Link) -> dict:
     mass = robot.mass or sum(link.mass for link in tree.walk()) or 1.0
     gain = SERVO_GAIN_PER_KG * mass
-    return {"robot": robot.name, "kv_linear": gain, "kv_angular": gain}
+    static = robot.physics_type == "static" or cat.get("robots", robot.type).static
+    return {"robot": robot.name, "kv_linear": gain, "kv_angular": gain, "joint": None if static else robot.name}
 
 
 # ---- damping: Blender gave each rigid body of the game Bullet's velocity damping, v *= (1 - d) ** dt at each
@@ -328,8 +336,9 @@ def _dampers(robot, cat: Catalogue, tree: Link) -> dict | None:
     mass, _, inertia = mass_properties(tree)
     kv = [linear * mass] * 3 + [angular * float(i) for i in np.diag(inertia)]
     return {"robot": robot.name, "site": mjcf_names.centre_of_mass(robot.name),
-            "axes": [{"name": mjcf_names.damper(robot.name, axis), "gear": gear, "kv": k}
-                     for axis, gear, k in zip(mjcf_names.DAMPER_AXES, _GEARS, kv) if k > 0]}
+            "axes": [{"name": mjcf_names.damper(robot.name, axis), "gear": gear, "kv": k,
+                      "joint": robot.name if index >= 3 else None}  # about the base's axes: on its free joint
+                     for index, (axis, gear, k) in enumerate(zip(mjcf_names.DAMPER_AXES, _GEARS, kv)) if k > 0]}
 
 
 _GEARS = ("1 0 0 0 0 0", "0 1 0 0 0 0", "0 0 1 0 0 0", "0 0 0 1 0 0", "0 0 0 0 1 0", "0 0 0 0 0 1")

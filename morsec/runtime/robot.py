@@ -75,6 +75,8 @@ def place_with(model, data, body: int, joint: tuple[int, int] | None, pos, rot) 
 
 
 _THREE_FLOATS = struct.Struct("=3d")  # the base servos' controls, as MjData's ctrl holds them
+FOLLOW_FRACTION = 0.25  # RobotHandle.follow's defaults: the trim's limit, as a share of the command
+FOLLOW_SETTLE = 2  # ... and how many calls a command is held before its trim is corrected
 
 
 class RobotHandle:
@@ -102,6 +104,9 @@ class RobotHandle:
         self._gravity = float(np.linalg.norm(m.opt.gravity))
         # the last slide computed and its inputs: a command held unchanged slides the same way every tick
         self._last_slide: tuple[tuple, ground_friction.Slide, list[float]] | None = None
+        # the last command _drive_on_ground planned, and what it planned: (its inputs, the command friction left
+        # of it, the slide's end velocity on the ground, its ticks)
+        self._planned: tuple[tuple, float, float, float, tuple[float, float] | None, list[float]] | None = None
         self.sampled: tuple[np.ndarray, np.ndarray] | None = None  # linear qvel (as sampled, as held)
         self._touched: float | None = None  # simulated s: when it last touched something not its own
         self.bodies = np.array(self.subtree(), dtype=int) if self.body_id >= 0 else np.zeros(0, dtype=int)
@@ -153,28 +158,21 @@ class RobotHandle:
     def apply_planar_speed(self, control_type: str, v: float, w: float, frequency: float) -> None:
         """apply_speed(control_type, [v, 0, 0], [0, 0, w], frequency) for floats v and w: the same, checked
         in fewer steps (motion_vw gives its robot these at every tick)."""
-        if control_type != "Position" and abs(v) <= MAX_SPEED and abs(w) <= MAX_SPEED:  # NaN fails them too
-            self._apply_velocity((v, 0.0, 0.0), (0.0, 0.0, w), frequency)
-        else:
+        if control_type == "Position" or not (abs(v) <= MAX_SPEED and abs(w) <= MAX_SPEED):  # NaN fails them too
             self.apply_speed(control_type, [v, 0.0, 0.0], [0.0, 0.0, w], frequency)
+        elif self.servo and self.free and self.ground:
+            self._drive_on_ground(v, 0.0, w, frequency)
+        else:
+            self._apply_velocity((v, 0.0, 0.0), (0.0, 0.0, w), frequency)
 
     def _apply_velocity(self, linear: tuple[float, ...], angular: tuple[float, ...], frequency: float) -> None:
         """apply_speed's 'Velocity', the speeds checked."""
         if self.servo:
-            p0, p1, p2 = linear[0], linear[1], angular[2]
             if self.free and self.ground:
-                # what MORSE's ground friction left of the command over the period (kits.ground_friction)
-                p0, p1, p2 = ground_friction.turned(p0, p1, p2, self._slide(p0, p1, frequency))
-            self._set_servos(*self._follow_floats("base servos", p0, p1, p2))
-            if self.free and self.ground and self._follow["base servos"].held == 0:
-                # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which
-                # pushing at the origin, below the centre of mass, would rock it); the servos then hold it
-                _, rot = self.pose()
-                v = self._base_qvel()
-                world = rot @ np.array([p0, p1, 0.0])
-                v[0], v[1] = world[0], world[1]
-                v[5] = p2
-            if self.free and not self.ground:
+                self._drive_on_ground(linear[0], linear[1], angular[2], frequency)
+                return
+            self._set_servos(*self._follow_floats("base servos", linear[0], linear[1], angular[2]))
+            if self.free:
                 # the servos hold vx, vy, wz; a robot off the ground also gets vz, wx, wy set (MORSE sets the
                 # whole body velocity of any robot that is not a GroundRobot)
                 _, rot = self.pose()
@@ -193,12 +191,47 @@ class RobotHandle:
                 v[:3] = world
                 v[3:] = angular
 
+    def _drive_on_ground(self, vx: float, vy: float, wz: float, frequency: float) -> None:
+        """_apply_velocity for a free ground robot with base servos: what MORSE's ground friction leaves of the
+        command over the period (kits.ground_friction), followed by the servos (see follow). Ticks at every frame
+        of every robot driven so: a command held unchanged reuses what the last tick planned from it."""
+        on_ground = self._on_ground()
+        key = (vx, vy, wz, on_ground, self.friction, frequency, self.damping)
+        planned = self._planned
+        if planned is None or planned[0] != key:
+            slid, ticks = self._slid_for(vx, vy, on_ground, frequency)
+            p0, p1, p2 = ground_friction.turned(vx, vy, wz, slid.mean)
+            planned = self._planned = (key, p0, p1, p2, slid.end if on_ground else None, ticks)
+        _, p0, p1, p2, self._slid, ticks = planned
+        self.ticks = ticks.copy()
+        state = self._follow.get("base servos")
+        if state is None:
+            state = self._follow["base servos"] = trim.Follow()
+        self._set_servos(*state.drive(p0, p1, p2, self.sim.clock.elapsed, self._xpos.tolist(), self._xmat.tolist(),
+                                      FOLLOW_FRACTION, FOLLOW_SETTLE, True))
+        if state.held == 0:
+            # a new command: the body takes it at once, as MORSE's (no servo force to speed it up, which pushing
+            # at the origin, below the centre of mass, would rock it); the servos then hold it
+            _, rot = self.pose()
+            v = self._base_qvel()
+            world = rot @ np.array([p0, p1, 0.0])
+            v[0], v[1] = world[0], world[1]
+            v[5] = p2
+
     # ---- MORSE's ground friction between the ticks that set a ground robot's velocity (kits.ground_friction)
     def _slide(self, vx: float, vy: float, frequency: float) -> tuple[float, float]:
         """The mean planar velocity over the actuator's period of a ground robot set going at (vx, vy), body
         frame, that the ground's friction (on the ground) and Bullet's damping then slow down."""
-        self._slid = None
         on_ground = self._on_ground()
+        slid, ticks = self._slid_for(vx, vy, on_ground, frequency)
+        self._slid = slid.end if on_ground else None
+        self.ticks = ticks.copy()
+        return slid.mean
+
+    def _slid_for(self, vx: float, vy: float, on_ground: bool, frequency: float) -> tuple[ground_friction.Slide,
+                                                                                          list[float]]:
+        """The slide of a robot set going at (vx, vy), and the shares of the held speed at the end of its ticks
+        (empty: every tick ends at the held speed)."""
         key = (vx, vy, on_ground, self.friction, frequency, self.damping)  # all mu and the slide depend on
         if self._last_slide is None or self._last_slide[0] != key:  # (the clock's frequency never changes)
             mu = ground_friction.ground_friction(self.friction) if on_ground else 0.0
@@ -207,11 +240,7 @@ class RobotHandle:
             # ticks that end at the held speed leave it as it is (sample_tick_end): none to keep then
             ticks = [] if all(share == 1.0 for share in slid.ticks) else list(slid.ticks)
             self._last_slide = (key, slid, ticks)
-        _, slid, ticks = self._last_slide
-        if on_ground:
-            self._slid = slid.end
-        self.ticks = ticks.copy()
-        return slid.mean
+        return self._last_slide[1], self._last_slide[2]
 
     # MORSE's body went at the speed set at the start of each tick, less what damping and friction took in
     # the tick (kits.ground_friction): its sensors read it at the end of the tick, at its lowest. The servos
@@ -273,7 +302,8 @@ class RobotHandle:
         return self._touched is not None and now - self._touched <= self.GROUND_MEMORY
 
     # ---- following a held command (morsec.runtime.trim)
-    def follow(self, key: str, command, fraction: float = 0.25, settle: int = 2) -> tuple[float, float, float]:
+    def follow(self, key: str, command, fraction: float = FOLLOW_FRACTION,
+               settle: int = FOLLOW_SETTLE) -> tuple[float, float, float]:
         """What to drive the robot with so that it goes at `command` (vx, vy, wz: body frame; wz about the
         vertical for a ground robot): the command plus its trim (trim.Follow). `key` names who drives (one trim
         each); all trims are dropped when the robot is teleported. The trim is corrected once the command has
@@ -283,8 +313,8 @@ class RobotHandle:
             raise ValueError(f"{key}: a command must be finite numbers, got {list(command)}")
         return self._follow_floats(key, c0, c1, c2, float(fraction), int(settle))
 
-    def _follow_floats(self, key: str, c0: float, c1: float, c2: float, fraction: float = 0.25,
-                       settle: int = 2) -> tuple[float, float, float]:
+    def _follow_floats(self, key: str, c0: float, c1: float, c2: float, fraction: float = FOLLOW_FRACTION,
+                       settle: int = FOLLOW_SETTLE) -> tuple[float, float, float]:
         """follow, the command given as floats."""
         state = self._follow.get(key)
         if state is None:
