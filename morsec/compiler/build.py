@@ -24,7 +24,7 @@ import numpy as np
 from morsec import __version__
 from morsec.compiler.assets import Assets
 from morsec.compiler.middleware import assign_services, assign_streams, middleware_view
-from morsec.compiler.mjcf import render_scene
+from morsec.compiler.mjcf import render_scene, static_robot
 from morsec.compiler.urdf import expand_xacro, read_urdf
 from morsec.component.catalogue import (
     Catalogue,
@@ -84,7 +84,7 @@ def compile_scene(scene, cat: Catalogue) -> dict[str, str | bytes]:
         files[path] = urdf
         robots.append(RobotEntry(name=robot.name, type=robot.type, component=component_ref(cls),
                                  builder_name=cls.builder_name or robot.type, urdf=path,
-                                 free=not (robot.physics_type == "static" or cls.static), friction=robot.friction,
+                                 free=not static_robot(robot, cls), friction=robot.friction,
                                  properties=robot.properties.model_dump(mode="json")))
     xml = render_scene(scene, cat, trees, loop_frequency, assets)
     check_mjcf(xml, scene, assets.files)

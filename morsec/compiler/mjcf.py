@@ -204,9 +204,15 @@ def _prop_sizes(scene, cat: Catalogue, cls: type[Component]) -> list[list[float]
     return [list(size) for size in sorted(sizes)]
 
 
+def static_robot(robot, cls) -> bool:
+    """Whether a robot has no free joint (its scene's physics_type, or its class, says static): one fact for the
+    free joint, and for the servos and dampers that act on it."""
+    return robot.physics_type == "static" or bool(getattr(cls, "static", False))
+
+
 def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
     cls = cat.get("robots", robot.type)
-    static = robot.physics_type == "static" or cls.static
+    static = static_robot(robot, cls)
     collides = robot.collision and robot.ghost is None and robot.physics_type != "no_collision" and cls.collision
     _prepare_links(tree, robot)
     # per-joint MuJoCo armature (drive-train inertia reflected through a gearbox) declared by the robot
@@ -286,7 +292,7 @@ def _locks(scene, cat: Catalogue, robot_trees: dict[str, Link]) -> list[dict]:
     point and topple."""
     out = []
     for robot in scene.robots:
-        static = robot.physics_type == "static" or getattr(cat.get("robots", robot.type), "static", False)
+        static = static_robot(robot, cat.get("robots", robot.type))
         if robot.locks and not static:
             mass = robot.mass or sum(link.mass for link in robot_trees[robot.name].walk()) or 1.0
             out += _lock_entries(robot.name, robot.locks, mass, site=mjcf_names.centre_of_mass(robot.name))
@@ -311,7 +317,7 @@ def _lock_entries(owner: str, locks: list[str], mass: float, site: str | None = 
 def _servo(robot, cat: Catalogue, tree: Link) -> dict:
     mass = robot.mass or sum(link.mass for link in tree.walk()) or 1.0
     gain = SERVO_GAIN_PER_KG * mass
-    static = robot.physics_type == "static" or cat.get("robots", robot.type).static
+    static = static_robot(robot, cat.get("robots", robot.type))
     return {"robot": robot.name, "kv_linear": gain, "kv_angular": gain, "joint": None if static else robot.name}
 
 
@@ -324,7 +330,7 @@ def _servo(robot, cat: Catalogue, tree: Link) -> dict:
 
 def _damped(robot, cat: Catalogue) -> bool:
     cls = cat.get("robots", robot.type)
-    static = robot.physics_type == "static" or cls.static
+    static = static_robot(robot, cls)
     collides = robot.collision and robot.ghost is None and robot.physics_type != "no_collision" and cls.collision
     return not static and collides and any(d > 0 for d in cls.damping)
 
