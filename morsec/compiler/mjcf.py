@@ -207,7 +207,7 @@ def _prop_sizes(scene, cat: Catalogue, cls: type[Component]) -> list[list[float]
 def static_robot(robot, cls) -> bool:
     """Whether a robot has no free joint (its scene's physics_type, or its class, says static): one fact for the
     free joint, and for the servos and dampers that act on it."""
-    return robot.physics_type == "static" or bool(getattr(cls, "static", False))
+    return robot.physics_type == "static" or cls.static
 
 
 def _robot_body(robot, cat: Catalogue, env, tree: Link) -> RobotBody:
@@ -343,8 +343,8 @@ def _dampers(robot, cat: Catalogue, tree: Link) -> dict | None:
     kv = [linear * mass] * 3 + [angular * float(i) for i in np.diag(inertia)]
     return {"robot": robot.name, "site": mjcf_names.centre_of_mass(robot.name),
             "axes": [{"name": mjcf_names.damper(robot.name, axis), "gear": gear, "kv": k,
-                      "joint": robot.name if index >= 3 else None}  # about the base's axes: on its free joint
-                     for index, (axis, gear, k) in enumerate(zip(mjcf_names.DAMPER_AXES, _GEARS, kv)) if k > 0]}
+                      "joint": robot.name if axis.startswith("r") else None}  # rx, ry, rz: on its free joint
+                     for axis, gear, k in zip(mjcf_names.DAMPER_AXES, _GEARS, kv) if k > 0]}
 
 
 _GEARS = ("1 0 0 0 0 0", "0 1 0 0 0 0", "0 0 1 0 0 0", "0 0 0 1 0 0", "0 0 0 0 1 0", "0 0 0 0 0 1")
