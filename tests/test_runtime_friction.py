@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 import mujoco
+import numpy as np
 import pytest
 from runtime_helpers import Morsec, pose_sensor, robot, scene, scene_file, start_all, stop_all
 from test_runtime_motion import MOTION, Recorder, at, drive, start_index
@@ -160,3 +161,41 @@ robots:
         assert geoms
         for g in geoms:
             assert bool(model.geom_condim[g] == 1 and model.geom_priority[g] == 1) is frictionless, name
+
+
+def test_the_ground_check_reads_the_contacts_of_every_frame(build_yaml):
+    """Simulation.touching (whether a robot rests on something: MORSE's ground friction) keeps its view of the
+    contacts' geom pairs while their number stays the same (MuJoCo fills its contacts from the start of MjData's
+    arena): at every frame it reads the pairs MuJoCo's contact list holds then, also when they changed and their
+    number did not (the robot put from the ground onto a step, eight contacts either way)."""
+    from morsec.runtime.simulation import RunOptions, Simulation
+
+    out = build_yaml("""
+environment: {name: empty, time: {strategy: fixed_step, frequency: 60}}
+robots:
+  - {name: robot, type: atrv, components: [{name: motion, type: motion_vw}]}
+  - {name: flyer, type: atrv, translate: [0.0, 5.0, 3.0], properties: {NoGravity: true}}
+objects:
+  - {name: step, type: box, translate: [3.0, 0.0, 0.1], size: [2.0, 2.0, 0.2], dynamic: false}
+""")
+    sim = Simulation(out, RunOptions(strategy="fixed_step", service_port=0, port_base=0))
+    try:
+        handle, owner = sim.robots[0].handle, sim._geom_robot
+        same_number_new_pairs, previous = 0, None
+        for frame in range(80):
+            if frame % 10 == 5:  # from the ground onto the step's top, and back
+                handle.set_pose([3.0, 0.0, 0.3] if frame % 20 == 5 else [0.0, 0.0, 0.1], np.eye(3))
+            sim.frame()
+            sim.answer()
+            pairs = sim.data.contact.geom.copy()  # asked for afresh
+            sim._touching = None
+            touching = sim.touching()
+            assert sim._contact_geoms.tobytes() == pairs.tobytes(), frame
+            assert touching == {owner[g] for a, b in pairs.tolist() if owner[a] != owner[b] for g in (a, b)} - {-1}
+            assert touching == {0}, frame  # the robot on the ground or the step, the flyer on nothing
+            if previous is not None and len(previous) == len(pairs) and previous.tobytes() != pairs.tobytes():
+                same_number_new_pairs += 1
+            previous = pairs
+        assert same_number_new_pairs >= 6  # the view kept was read, not asked for again
+    finally:
+        sim.close()

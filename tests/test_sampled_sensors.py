@@ -252,5 +252,11 @@ def test_a_failing_computation_is_the_sensors_error_not_the_runs(build, caplog):
         assert "timestamp" in lines  # the odometry's messages left
         for reader in readers:
             reader.close()
+        for _ in range(20):  # the loop notices them leaving when it reads their sockets
+            sim.poller.poll(0.05)
+            if not (pose.out_streams[0].listening or odometry.out_streams[0].listening):
+                break
+        assert not pose.out_streams[0].listening and not odometry.out_streams[0].listening
     finally:
         sim.close()
+

@@ -76,6 +76,9 @@ def _plain(value):
 
 
 class SocketStream(Server):
+    # a client reads it: kept as clients come and go (the loop asks at every tick of the sensor)
+    listening = False
+
     def __init__(self, poller: Poller, component: str, direction: str, host: str, port: int, hint_only: bool,
                  context: RunContext | None = None):
         super().__init__(poller, host, port, attempts=100 if hint_only else 1)
@@ -90,6 +93,7 @@ class SocketStream(Server):
         self.reader_opened = context.reader_opened if context is not None and direction == "OUT" else None
 
     def accepted(self, conn: Connection) -> None:
+        self.listening = True
         if self.context is not None:
             self.accepted_at[conn] = self.frames()
             self.context.stream_opened(conn)
@@ -97,6 +101,7 @@ class SocketStream(Server):
             self.reader_opened()
 
     def dropped(self, conn: Connection) -> None:
+        self.listening = bool(self.clients)
         self.pending.pop(conn, None)
         self.accepted_at.pop(conn, None)
         if self.context is not None:
@@ -145,10 +150,6 @@ class SocketStream(Server):
             if not queue:
                 del self.pending[conn]
         return message
-
-    @property
-    def listening(self) -> bool:
-        return bool(self.clients)
 
     def publish(self, message: dict) -> None:
         line = encode(message)

@@ -34,9 +34,10 @@ class GaussianNoise(Modifier):
 
     deferrable = True
     stds: list[float] = []
+    _rows: list[list[float]] | None = None  # the batch's rows not drawn yet, the next one last
 
     def draw(self) -> list[float]:
-        rows = getattr(self, "_rows", None)
+        rows = self._rows
         if not rows:
             rows = self._rows = self.rng.normal(0.0, self.stds, size=(BATCH, len(self.stds))).tolist()
             rows.reverse()

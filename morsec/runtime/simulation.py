@@ -220,8 +220,11 @@ class Simulation:
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             # MuJoCo's list of contacts, taken once: it follows the contacts of every step (their number too),
-            # and asking MjData for it at every frame cost more than reading it
+            # and asking MjData for it at every frame cost more than reading it. So does the view of their geom
+            # pairs while their number stays the same (the contacts fill the start of MjData's arena: a view of
+            # the first n shows the first n of every step), asked for again only when it changes
             self._contacts = self.data.contact
+            self._contact_geoms = self._contacts.geom
             self._contact_pairs = b""  # the contacts' geom pairs (bytes) last looked at, and the robots touching
             self._contact_touching: set[int] = set()
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
@@ -504,7 +507,9 @@ class Simulation:
         MuJoCo found last: found once for all robots until the contacts change (the same geom pairs as the
         last time they were looked at: the same robots, found again only when they differ)."""
         if self._touching is None:
-            geoms = self._contacts.geom
+            geoms = self._contact_geoms
+            if len(geoms) != self.data.ncon:
+                geoms = self._contact_geoms = self._contacts.geom
             pairs = geoms.tobytes()  # cheaper than tolist, and all a robot resting or driving on needs
             if pairs != self._contact_pairs:
                 self._contact_pairs = pairs

@@ -5,8 +5,8 @@ One `mujoco.mj_multiRay` call per scan, no Python loop over rays:
 * ray directions are computed once, at start, in the sensor frame (MORSE builds its "Arc_" mesh once:
   `resolution`, `scan_window` and the layer properties are read at start; `laser_range` is read at
   every scan, so `set_property('laser_range', ...)` takes effect at the next scan);
-* each scan rotates them into the world with the sensor's current orientation (one 3x3 product) and
-  casts them all from the sensor's origin with `cutoff = laser_range`;
+* each scan's rays are rotated into the world with the sensor's orientation at the scan (one 3x3 product)
+  and cast from its origin at the scan with `cutoff = laser_range`;
 * rays see collision geometry only: the geom group mask excludes group 2 (the robots' visual-only
   geoms and the components' own models), and the geoms of the robot carrying the sensor (every body
   of its kinematic tree, not only the one `bodyexclude` could skip) are moved to group 5 for the
@@ -16,8 +16,10 @@ One `mujoco.mj_multiRay` call per scan, no Python loop over rays:
   frame) times the hit distance, because the rays start at the sensor's origin;
 * the rays are cast when the data is read (SampledSensor), on the world as it was at the scan: a scan copies
   what `mj_multiRay` reads that the run changes (MjData's geom poses and bodies' inertial frames, which the
-  bounding volumes follow; the model's geom groups) and the sensor's position; a read puts those copies in
-  place for the cast and the live values back after it. A scan nobody reads casts nothing
+  bounding volumes follow; the model's geom groups) and the sensor's position and rotation, as byte copies
+  between memoryviews (a scan ticks up to every frame; np.copyto and the rays' rotation were 2 µs of it); a
+  read rotates the rays, puts those copies in place for the cast and the live values back after it. A scan
+  nobody reads rotates and casts nothing
   (tests/test_sampled_sensors.py checks, on the installed MuJoCo, that a cast reads nothing else of MjData).
   A cast also skips geoms whose colour or material is fully transparent (the model's rgba alphas): nothing
   changes those during a run; something that did would have to be copied with the rest.
@@ -147,18 +149,27 @@ class LaserScanner(SampledSensor):
         self._world = None if m.nflex else [d.geom_xpos, d.geom_xmat, d.xipos, d.ximat, m.geom_group]
         self._scanned = [np.empty_like(live) for live in self._world or ()]  # the last scan's world
         self._live = [np.empty_like(live) for live in self._world or ()]  # the live world, kept during a cast
+        # a scan's copy of the world, as plain byte copies between memoryviews of both sides (MjData's and the
+        # model's arrays stay put): a small array's np.copyto costs five times more
+        self._keep = [(_bytes(scanned), _bytes(live)) for live, scanned in zip(self._world or (), self._scanned)]
         self._from = np.empty(3)  # the sensor's position at the last scan
+        self._rot = np.empty(9)  # ... and its rotation (row-major)
         self._xpos, self._xmat = d.xpos[self.body_id], d.xmat[self.body_id]
+        self._scan_pose = ((_bytes(self._from), _bytes(self._xpos)), (_bytes(self._rot), _bytes(self._xmat)))
         self.local_data["point_list"] = np.zeros((self.nray, 3))
         self.local_data["range_list"] = np.full(self.nray, float(self.properties.laser_range))
         if self._rssi:
             self.local_data["remission_list"] = np.zeros(self.nray)
 
     # ---- one scan
-    def world_directions(self, rot: np.ndarray) -> np.ndarray:
-        """The rays of this scan in the world frame (N x 3), written into the preallocated buffer."""
-        np.matmul(self._dirs, rot.T, out=self._vec)
+    def scan_directions(self) -> np.ndarray:
+        """The rays of this scan in the sensor frame (N x 3): the same at every scan (a turning scanner's
+        change; they are read at the scan)."""
         return self._dirs
+
+    def world_directions(self, dirs: np.ndarray, rot: np.ndarray) -> None:
+        """Turn a scan's rays into the world frame with its rotation, into the buffer `cast` reads."""
+        np.matmul(dirs, rot.T, out=self._vec)
 
     def cast(self, pos: np.ndarray, laser_range: float) -> tuple[np.ndarray, np.ndarray]:
         """Cast the rays of `_vec` from `pos` in the world MjData holds: (distances with -1 for misses, geom
@@ -175,21 +186,24 @@ class LaserScanner(SampledSensor):
                 m.geom_group[own] = self._own_groups
         return self._dist, self._geomid
 
-    # ---- a scan turns the rays into the world and copies the world as they would see it; they are cast when
-    # the data is read (SampledSensor): nothing is cast at the scans nobody reads
+    # ---- a scan keeps its rays, the sensor's pose and the world as the rays would see it; they are turned into
+    # the world and cast when the data is read (SampledSensor): nothing is cast at the scans nobody reads
     def sample(self) -> tuple:
         # into buffers, not copies: only the next scan rewrites them, and its sample replaces this one
-        dirs = self.world_directions(self._xmat.reshape(3, 3))
+        dirs = self.scan_directions()
         laser_range = float(self.properties.laser_range)
-        np.copyto(self._from, self._xpos)
+        for scanned, live in self._scan_pose:
+            scanned[:] = live
         if self._world is None:
+            self.world_directions(dirs, self._rot.reshape(3, 3))
             return dirs, laser_range, *self.cast(self._from, laser_range)
-        for live, scanned in zip(self._world, self._scanned):
-            np.copyto(scanned, live)
+        for scanned, live in self._keep:
+            scanned[:] = live
         return dirs, laser_range, None, None
 
     def compute(self, dirs: np.ndarray, laser_range: float, dist: np.ndarray | None, geomid: np.ndarray | None) -> None:
         if dist is None:  # cast now in the scan's world
+            self.world_directions(dirs, self._rot.reshape(3, 3))
             world, live = self._world or (), self._live
             for now, kept, scanned in zip(world, live, self._scanned):
                 np.copyto(kept, now)
@@ -210,6 +224,12 @@ class LaserScanner(SampledSensor):
         self.local_dict["range_list"] = np.where(hit, dist, laser_range)
         if geomid is not None:
             self.local_dict["remission_list"] = self._remission[np.where(hit, geomid, -1)]
+
+
+def _bytes(array: np.ndarray) -> memoryview:
+    """A C-contiguous array's bytes, as a memoryview (a slice assignment between two is a plain copy)."""
+    assert array.flags["C_CONTIGUOUS"], "a scan copies contiguous arrays only"
+    return array.data.cast("B")
 
 
 COMPONENT = LaserScanner

@@ -49,10 +49,9 @@ class VelodyneRayCast(LaserScanner):
         self._fan = self._dirs
         self._turned = np.empty_like(self._fan)
 
-    def world_directions(self, rot: np.ndarray) -> np.ndarray:
+    def scan_directions(self) -> np.ndarray:
         c, s = math.cos(self.azimuth), math.sin(self.azimuth)
         np.matmul(self._fan, np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]), out=self._turned)
-        np.matmul(self._turned, rot.T, out=self._vec)
         return self._turned
 
     def default_action(self) -> None:
