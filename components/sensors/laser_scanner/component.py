@@ -150,7 +150,7 @@ class LaserScanner(SampledSensor):
         self._scanned = [np.empty_like(live) for live in self._world or ()]  # the last scan's world
         self._live = [np.empty_like(live) for live in self._world or ()]  # the live world, kept during a cast
         # a scan's copy of the world, as plain byte copies between memoryviews of both sides (MjData's and the
-        # model's arrays stay put): a small array's np.copyto costs five times more
+        # model's arrays stay put): a small array's np.copyto costs four times more
         self._keep = [(_bytes(scanned), _bytes(live)) for live, scanned in zip(self._world or (), self._scanned)]
         self._from = np.empty(3)  # the sensor's position at the last scan
         self._rot = np.empty(9)  # ... and its rotation (row-major)
