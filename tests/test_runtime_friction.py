@@ -191,6 +191,8 @@ objects:
             sim._touching = None
             touching = sim.touching()
             assert sim._contact_geoms.tobytes() == pairs.tobytes(), frame
+            assert sim._contact_view.tobytes() == pairs.tobytes(), frame  # what touching compares
+            assert sim._contact_seen.tobytes() == pairs.tobytes(), frame  # ... with the pairs it looked at last
             assert touching == {owner[g] for a, b in pairs.tolist() if owner[a] != owner[b] for g in (a, b)} - {-1}
             assert touching == {0}, frame  # the robot on the ground or the step, the flyer on nothing
             if previous is not None and len(previous) == len(pairs) and previous.tobytes() != pairs.tobytes():

@@ -140,6 +140,12 @@ class Middleware:
     def flush(self) -> None:
         """Send what is queued (called every frame)."""
 
+    def flushes(self) -> list[Callable[[], None]]:
+        """What the loop calls at each of its flushes (twice a frame, and while it waits), asked once the
+        endpoints are open: `flush`, or the flushes of the middleware's own servers, which saves a call at every
+        flush (the socket middleware's service server; none when it serves nothing)."""
+        return [self.flush]
+
     def answer_anytime(self) -> None:
         """Between two physics sub-steps of a frame, while a client converses: answer the requests that
         `anytime` services may answer mid-frame (ServiceInfo.anytime), on the loop's thread; nothing else."""

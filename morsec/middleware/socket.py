@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field
@@ -88,6 +89,9 @@ class Socket(Middleware):
     def flush(self) -> None:
         if self.server is not None:
             self.server.flush()
+
+    def flushes(self) -> list[Callable[[], None]]:
+        return [self.server.flush] if self.server is not None else []
 
     def answer_anytime(self) -> None:
         if self.server is not None:

@@ -27,7 +27,7 @@ class Clock:
         self.elapsed = 0.0  # simulated seconds since the start: frames * dt (an attribute: read many times a frame)
         self._wall_anchor = _time.perf_counter()
         self._sim_anchor = 0.0
-        self._paced = False  # fixed_step following the wall clock for now
+        self.paced = False  # fixed_step following the wall clock for now (delay() sets it)
         # the frames' wall-clock durations, for `time statistics`: from the first start of one to the last end,
         # and the sum of their squares (a tick adds one square: the mean and variance follow)
         self._first_wall = self._last_wall = self._wall_anchor
@@ -52,10 +52,10 @@ class Clock:
         lag = MAX_LAG
         if self.strategy != "best_effort":
             if not paced:
-                self._paced = False
+                self.paced = False
                 return 0.0
-            if not self._paced:  # from this frame on: the next one a frame's time later
-                self._paced = True
+            if not self.paced:  # from this frame on: the next one a frame's time later
+                self.paced = True
                 self.restart_a_frame_later()
             lag = 0.0
         target = self._wall_anchor + (self.elapsed - self._sim_anchor) / self.scale
@@ -71,7 +71,7 @@ class Clock:
         if self.strategy != "best_effort":
             if not paced:
                 return 0.0
-            if not self._paced:  # delay() will put the next frame a frame's time from now
+            if not self.paced:  # delay() will put the next frame a frame's time from now
                 return self.dt / self.scale
         target = self._wall_anchor + (self.elapsed - self._sim_anchor) / self.scale
         return max(0.0, target - _time.perf_counter())
