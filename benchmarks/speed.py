@@ -59,7 +59,7 @@ class Plan:
 # the single-robot scenes' runs are 30 simulated s (1,800 frames, a tenth of a second of wall time): what a run
 # pays once, at its first frames (the IMU's first geomagnetic field, the first batch of each noise, the first
 # command's ground-friction plan, MuJoCo's first step on cold caches: about 1 ms in the sensors scene), is then
-# under 1% of the time per frame; at the 10 s the sensors scene ran before, 2.5%
+# under 1% of the time per frame; at the 10 s the sensors scene ran before, about 2%
 FULL = Plan({"reference": 30.0, "sensors": 30.0, "fleet": 3.0}, 5, {"reference": 2.0, "sensors": 1.0, "fleet": 0.1},
             7, 5.0, 2000)
 # without the fleet's instructions: about 5 minutes more of valgrind (128 robots' start-up, twice a side)
