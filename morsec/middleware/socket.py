@@ -91,6 +91,7 @@ class Socket(Middleware):
             self.server.flush()
 
     def flushes(self) -> list[Callable[[], None]]:
+        # the service server's own flush, not `flush` (a subclass overriding `flush` overrides this too)
         return [self.server.flush] if self.server is not None else []
 
     def answer_anytime(self) -> None:
