@@ -259,4 +259,3 @@ def test_a_failing_computation_is_the_sensors_error_not_the_runs(build, caplog):
         assert not pose.out_streams[0].listening and not odometry.out_streams[0].listening
     finally:
         sim.close()
-

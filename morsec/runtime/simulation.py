@@ -221,14 +221,13 @@ class Simulation:
             self._geom_robot = self._robots_of_geoms()
             self._touching: set[int] | None = None  # this frame's, once asked for (see touching)
             # MuJoCo's list of contacts, taken once: it follows the contacts of every step (their number too),
-            # and asking MjData for it at every frame cost more than reading it. So does the view of their geom
+            # and asking MjData for it at every frame cost more than reading it. So does a memoryview of their geom
             # pairs while their number stays the same (the contacts fill the start of MjData's arena: a view of
-            # the first n shows the first n of every step), asked for again only when it changes
+            # the first n shows the first n of every step), asked for again only when it changes; compared with
+            # the pairs last looked at (a contiguous copy) item by item in C, it costs half of copying the strided
+            # view's bytes to compare them
             self._contacts = self.data.contact
-            self._contact_geoms = self._contacts.geom
-            # ... and a memoryview of that view: compared with the pairs last looked at (a contiguous copy) item
-            # by item in C, it costs half of copying the strided view's bytes to compare them
-            self._contact_view = self._contact_geoms.data
+            self._contact_view = self._contacts.geom.data
             self._contact_seen = np.zeros((0, 2), dtype=np.int32).data  # the pairs last looked at,
             self._contact_touching: set[int] = set()  # and the robots touching then
             self.components: list[ComponentRuntime] = [self._component(c, handles) for c in manifest.components]
@@ -515,10 +514,9 @@ class Simulation:
         if self._touching is None:
             view = self._contact_view
             if len(view) != self.data.ncon:
-                self._contact_geoms = self._contacts.geom
-                view = self._contact_view = self._contact_geoms.data
+                view = self._contact_view = self._contacts.geom.data
             if view != self._contact_seen:
-                seen = np.array(self._contact_geoms)
+                seen = np.array(view)
                 self._contact_seen = seen.data
                 touching = set()
                 owner = self._geom_robot
