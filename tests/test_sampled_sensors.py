@@ -4,6 +4,7 @@ noise (a deferrable modifier) draws at every tick and is added when the data is 
 
 from __future__ import annotations
 
+import math
 import socket
 from pathlib import Path
 from types import SimpleNamespace
@@ -14,6 +15,7 @@ import pytest
 
 from morsec.app.project import build_scene
 from morsec.component import SampledSensor
+from morsec.kits.geometry import euler_of_xmat
 from morsec.runtime.simulation import RunOptions, Simulation
 
 SCENE = """\
@@ -118,6 +120,38 @@ def test_a_tick_nobody_reads_computes_nothing(build):
         x = pose.local_data["x"]  # a read computes the last tick's sample, once
         assert len(computed) == 1 and x == pose.local_data["x"] and len(computed) == 1
         assert x == pytest.approx(sim.data.xpos[pose.body_id][0])
+    finally:
+        sim.close()
+
+
+def test_poses_read_from_the_frames_copy_are_mjdatas_at_the_tick(build):
+    """The pose, odometry and GPS sensors sample the loop's copy of the bodies' poses (Simulation.body_poses): what
+    they give is MjData's pose of their body at their tick, to the bit, also for a sensor ticking at every other
+    frame (its previous pose is its previous tick's, not the last frame's)."""
+    sim = Simulation(build, RunOptions(strategy="fixed_step", service_port=0, port_base=0))
+    try:
+        pose, odometry = sim.by_name["robot.pose"].instance, sim.by_name["robot.odo_raw"].instance
+        gps_raw = sim.by_name["robot.gps_raw"].instance  # 30 Hz: a tick every other frame
+        positions = {}  # frame -> MjData's positions of the bodies, after the frame (its sensors' ticks)
+        for frame in range(1, 41):
+            if frame == 5:
+                sim.receive(sim.by_name["robot.motion"], {"v": 1.0, "w": 0.4})
+            sim.frame()
+            sim.answer()
+            positions[frame] = sim.data.xpos.copy()
+            data = pose.local_data
+            assert (data["x"], data["y"], data["z"]) == tuple(positions[frame][pose.body_id].tolist())
+            roll, pitch, yaw = euler_of_xmat(sim.data.xmat[pose.body_id].tolist())
+            assert (data["roll"], data["pitch"], data["yaw"]) == (roll, pitch, yaw)
+            if frame > 1:
+                moved = math.dist(positions[frame][odometry.body_id].tolist(),
+                                  positions[frame - 1][odometry.body_id].tolist())
+                assert odometry.local_data["dS"] == moved
+            if frame % 2 == 0 and frame > 2:  # gps_raw ticked at this frame and two frames before
+                enu = gps_raw.geo.to_enu(positions[frame][gps_raw.body_id].tolist())
+                before = gps_raw.geo.to_enu(positions[frame - 2][gps_raw.body_id].tolist())
+                assert gps_raw.local_data["velocity"] == ((enu - before) * gps_raw.frequency).tolist()
+        assert moved > 0.01  # the robot drove: poses that change from frame to frame
     finally:
         sim.close()
 

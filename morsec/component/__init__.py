@@ -18,6 +18,8 @@ from morsec.component.contract import (
                                        RobotProperties,
                                        SampledSensor,
                                        Sensor,
+                                       body_position,
+                                       body_rotation,
 )
 from morsec.component.fields import FIELD_TYPES
 from morsec.component.properties import (
@@ -32,4 +34,4 @@ from morsec.component.services import ServiceInfo, async_service, service
 __all__ = ["Actuator", "Component", "ComponentProperties", "ComputationModeProperties", "ControlTypeProperties",
            "DataField", "Device", "Environment", "FIELD_TYPES", "GeomagneticDateProperties", "Level", "Prop", "Robot",
            "RobotProperties", "RotorcraftProperties", "SampledSensor", "Sensor", "ServiceInfo",
-           "WheeledRobotProperties", "async_service", "component_class", "service"]
+           "WheeledRobotProperties", "async_service", "body_position", "body_rotation", "component_class", "service"]

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import copy
 import inspect
+import struct
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar, Literal
@@ -280,6 +281,19 @@ class Sensor(Device):
             modifier.modify(self.local_data)
 
 
+_POSITION, _ROTATION = struct.Struct("=3d"), struct.Struct("=9d")  # MjData's rows of xpos and xmat, native doubles
+
+
+def body_position(poses: tuple[bytes, bytes], body: int) -> tuple[float, float, float]:
+    """A body's world position (x, y, z), in a copy of the bodies' poses (Simulation.body_poses)."""
+    return _POSITION.unpack_from(poses[0], 24 * body)
+
+
+def body_rotation(poses: tuple[bytes, bytes], body: int) -> tuple[float, ...]:
+    """A body's world rotation, row-major (9 floats), in a copy of the bodies' poses (Simulation.body_poses)."""
+    return _ROTATION.unpack_from(poses[1], 72 * body)
+
+
 class SampledSensor(Sensor):
     """A sensor whose data at a tick follows from a few numbers read at that tick, its sample (a pose; the
     previous one too), by arithmetic that costs far more than reading them (Euler angles, changes of frame).
@@ -291,6 +305,10 @@ class SampledSensor(Sensor):
     computed). A deferrable modifier (Modifier.deferrable: Gaussian noise) draws at the tick and applies
     when the data is read; any other runs at the tick, and so computes the data there."""
 
+    # True: the sensor's sample is (or holds) `self.sim.body_poses`, the copy of the bodies' world poses the loop
+    # takes once a frame (at the first sensor due) when a sensor reads it; `compute` reads its body's pose from it
+    # with body_position and body_rotation. A tick then costs no read of its own.
+    reads_body_poses: ClassVar[bool] = False
     _sample: tuple | None = None  # the last tick's sample, while local_data is not computed from it yet
     # (modifier, what it drew) of the deferrable modifiers of the ticks since the last sample, not applied yet
     _deferred: list[tuple[Modifier, Any]] | None = None

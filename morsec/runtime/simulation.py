@@ -213,6 +213,12 @@ class Simulation:
         self.keys = KeyState()  # the keys held in the viewer, if one is opened (MORSE's Keyboard reads them)
         self.poller = Poller()
         mujoco.mj_forward(self.model, self.data)
+        # the bodies' world positions and rotations as the sensors of a frame read them (MjData's xpos and xmat,
+        # copied as bytes when the frame's first sensor is due, if a sensor reads them: SampledSensor.reads_body_poses);
+        # a sensor keeps the copy of its tick as its sample, and reads its own body's pose from it only when its
+        # data is read (component.body_position): one copy a frame where each sensor's tick read its own pose
+        self._pose_views = (self.data.xpos.data, self.data.xmat.data)
+        self.body_poses = self.copy_body_poses()
 
         try:
             self.robots = [self._robot(r) for r in manifest.robots]
@@ -258,6 +264,7 @@ class Simulation:
                 self.poller.close()
                 raise RuntimeFailure(f"{comp.fqn}: {err}") from None
         set_send_ranks(self.components)  # after start: the sensors' computation modes resolved
+        self._copy_poses = any(getattr(c.instance, "reads_body_poses", False) for c in self.sensors)
 
         self.time_services = TimeServices(self)
         self.requests.on_request.append(self.time_services.arrived)
@@ -561,6 +568,12 @@ class Simulation:
             raise ValueError(f"unknown component {name!r}")
         return self.by_name[name]
 
+    def copy_body_poses(self) -> tuple[bytes, bytes]:
+        """The bodies' world positions and rotations now: MjData's xpos and xmat, as bytes (morsec.component's
+        body_position and body_rotation read one body's)."""
+        xpos, xmat = self._pose_views
+        return bytes(xpos), bytes(xmat)
+
     def scene_bodies(self) -> dict[str, int]:
         names = [r["name"] for r in self.scene["robots"]] + [o["name"] for o in self.scene["objects"]]
         return {n: mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, n) for n in names}
@@ -763,7 +776,7 @@ class Simulation:
                         clock.restart_a_frame_later()  # calling get() after its answer gets its message
                 if time_services.sleepers or time_services.deferred or requests.waiting:  # else nothing to answer
                     self.answer()
-                self._flush()
+                    self._flush()  # the answers (what the frame queued left with its own flush)
                 # fixed_step with no client between two sleeps, and not paced since: no wait (usually, at every
                 # frame: _delay would say 0 through two calls)
                 if hold is None or hold.awake or clock.paced:
@@ -959,6 +972,8 @@ class Simulation:
                 if sampled:  # the velocities the sensors read (d.cvel) follow the ones just sampled
                     mujoco.mj_comPos(self.model, self.data)
                     mujoco.mj_comVel(self.model, self.data)
+                if self._copy_poses:
+                    self.body_poses = self.copy_body_poses()
                 now = clock.now()
             inst = comp.instance
             (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now

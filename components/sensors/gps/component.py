@@ -1,7 +1,9 @@
 import math
 import time
 
-from morsec.component import DataField, Level, SampledSensor
+import numpy as np
+
+from morsec.component import DataField, Level, SampledSensor, body_position, body_rotation
 from morsec.modifiers.coordinates import POSITION_OUT
 from morsec.modifiers.noise import PositionNoise
 
@@ -42,30 +44,28 @@ class GPS(SampledSensor):
                   "observable standing still)", level="extended"),
     )
 
-    def start(self):
-        self.xpos = self.sim.data.xpos[self.body_id]  # a view of its world position (MjData's arrays stay put)
+    reads_body_poses = True
 
     def sample(self):
-        return self.xpos.tolist(),
+        return self.sim.body_poses,  # the frame's copy of the bodies' poses: this sensor's is read from it when needed
 
-    def compute(self, pos):
+    def compute(self, poses):
         local = self.local_dict
-        local["x"], local["y"], local["z"] = pos
+        local["x"], local["y"], local["z"] = body_position(poses, self.body_id)
 
 
 class RawGPS(GPS):
     def start(self):
-        super().start()
         self.geo = self.sim.geo  # ValueError (the simulation does not start) without geodetic properties
-        self.previous_pos = self.xpos.tolist()
+        self.previous = self.sim.copy_body_poses()
 
     def sample(self):
-        # the position now and at the previous tick: the velocity is their difference in ENU
-        pos, previous_pos = self.xpos.tolist(), self.previous_pos
-        self.previous_pos = pos
-        return pos, previous_pos
+        # the poses now and at the previous tick: the velocity is the difference of the positions in ENU
+        previous, self.previous = self.previous, self.sim.body_poses
+        return self.previous, previous
 
-    def compute(self, pos, previous_pos):
+    def compute(self, poses, previous):
+        pos, previous_pos = body_position(poses, self.body_id), body_position(previous, self.body_id)
         enu = self.geo.to_enu(pos)
         # finite difference over the nominal period, as MORSE (a kinematic move is seen too)
         self.enu_velocity = (enu - self.geo.to_enu(previous_pos)) * self.frequency
@@ -75,11 +75,8 @@ class RawGPS(GPS):
 
 
 class ExtendedGPS(RawGPS):
-    def sample(self):
-        return *super().sample(), self.rotation().copy()
-
-    def compute(self, pos, previous_pos, rotation):
-        super().compute(pos, previous_pos)
+    def compute(self, poses, previous):
+        super().compute(poses, previous)
         local = self.local_dict
         utc = time.gmtime(float(local["timestamp"]))  # the tick's: the loop stamps every tick
         local["date"] = time.strftime("%d%m%y", utc)
@@ -88,7 +85,8 @@ class ExtendedGPS(RawGPS):
         if abs(east) < STILL and abs(north) < STILL:
             local["heading"] = float("inf")  # not observable standing still
         else:
-            forward = self.geo.to_enu(rotation[:, 0])
+            rotation = body_rotation(poses, self.body_id)  # row-major: its x axis is its first column
+            forward = self.geo.to_enu(np.array((rotation[0], rotation[3], rotation[6])))
             heading = math.degrees(math.atan2(forward[0], forward[1])) % 360.0
             local["heading"] = heading if heading < 360.0 else 0.0
 

@@ -1,6 +1,6 @@
 import math
 
-from morsec.component import DataField, Level, SampledSensor
+from morsec.component import DataField, Level, SampledSensor, body_position, body_rotation
 from morsec.kits.geometry import (
     euler_of_transpose_times,
     normalize_angle,
@@ -47,25 +47,27 @@ class Odometry(SampledSensor):
         DataField("wx", 0.0, "float", "angular velocity about x, rad/s", level="integrated"),
     )
 
-    # Poses are kept as plain floats (position 3-tuple, row-major rotation 9-list): this sensor ticks
-    # every frame, and 3x3 numpy products cost more than the arithmetic itself.
-    def start(self):
-        # views of the sensor's world position and rotation in MjData (whose arrays stay put)
-        self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
-        self.origin_pos, self.origin_rot = self._pose()
-        self.previous_pos, self.previous_rot = self.origin_pos, self.origin_rot
+    # Poses are plain floats (position 3-tuple, row-major rotation 9-tuple): 3x3 numpy products cost more than the
+    # arithmetic itself. A tick keeps the frame's copy of the bodies' poses (Simulation.body_poses) and the one
+    # of the tick before; the sensor's own pose in each is read when its data is computed.
+    reads_body_poses = True
 
-    def _pose(self):
-        return tuple(self.xpos.tolist()), self.xmat.tolist()
+    def start(self):
+        self.previous = self.sim.copy_body_poses()
+        self.origin_pos, self.origin_rot = self._pose(self.previous)
+
+    def _pose(self, poses):
+        return body_position(poses, self.body_id), body_rotation(poses, self.body_id)
 
     def sample(self):
-        """The pose at the last tick and at this one (the sensor's data is computed from both)."""
-        pos, rot = self.xpos.tolist(), self.xmat.tolist()
-        prev_pos, prev_rot = self.previous_pos, self.previous_rot
-        self.previous_pos, self.previous_rot = pos, rot
-        return prev_pos, prev_rot, pos, rot
+        """The bodies' poses at the last tick and at this one (the sensor's data is computed from both)."""
+        previous, self.previous = self.previous, self.sim.body_poses
+        return previous, self.previous
 
-    def compute(self, prev_pos, prev_rot, pos, rot):
+    def compute(self, previous, poses):
+        self.compute_poses(*self._pose(previous), *self._pose(poses))
+
+    def compute_poses(self, prev_pos, prev_rot, pos, rot):
         dx, dy, dz = transpose_apply(self.origin_rot, (pos[0] - prev_pos[0], pos[1] - prev_pos[1],
                                                         pos[2] - prev_pos[2]))
         r0, p0, y0 = euler_of_transpose_times(self.origin_rot, prev_rot)
@@ -75,12 +77,12 @@ class Odometry(SampledSensor):
 
 
 class RawOdometry(Odometry):
-    def compute(self, prev_pos, prev_rot, pos, rot):
+    def compute_poses(self, prev_pos, prev_rot, pos, rot):
         self.local_dict["dS"] = math.dist(pos, prev_pos)
 
 
 class IntegratedOdometry(Odometry):
-    def compute(self, prev_pos, prev_rot, pos, rot):
+    def compute_poses(self, prev_pos, prev_rot, pos, rot):
         o, origin_rot = self.origin_pos, self.origin_rot
         px, py, pz = pos
         x, y, z = transpose_apply(origin_rot, (px - o[0], py - o[1], pz - o[2]))

@@ -1,4 +1,4 @@
-from morsec.component import DataField, SampledSensor
+from morsec.component import DataField, SampledSensor, body_position, body_rotation
 from morsec.kits.geometry import euler_of_xmat
 from morsec.modifiers.coordinates import POSITION_OUT
 from morsec.modifiers.noise import PoseNoise
@@ -21,16 +21,14 @@ class Pose(SampledSensor):
         DataField("roll", 0.0, "float", "rotation about x, rad"),
     )
 
-    def start(self):
-        # views of the sensor's world position and rotation in MjData (whose arrays stay put)
-        self.xpos, self.xmat = self.sim.data.xpos[self.body_id], self.sim.data.xmat[self.body_id]
+    reads_body_poses = True
 
     def sample(self):
-        return self.xpos.tolist(), self.xmat.tolist()
+        return self.sim.body_poses,  # the frame's copy of the bodies' poses: this sensor's is read from it when needed
 
-    def compute(self, pos, rot):
-        x, y, z = pos
-        roll, pitch, yaw = euler_of_xmat(rot)
+    def compute(self, poses):
+        x, y, z = body_position(poses, self.body_id)
+        roll, pitch, yaw = euler_of_xmat(body_rotation(poses, self.body_id))
         local = self.local_dict
         local["x"], local["y"], local["z"] = x, y, z
         local["yaw"], local["pitch"], local["roll"] = yaw, pitch, roll
