@@ -156,6 +156,33 @@ def test_poses_read_from_the_frames_copy_are_mjdatas_at_the_tick(build):
         sim.close()
 
 
+def test_a_sensor_that_moves_its_robot_is_seen_by_the_poses_that_tick_after_it(build):
+    """A component that moves bodies during the sensors' ticks (a MORSE sensor setting worldPosition, a teleport
+    through the simulation's or the robot's API): the sensors ticking after it in the frame read the poses it set,
+    as they read MjData's."""
+    sim = Simulation(build, RunOptions(strategy="fixed_step", service_port=0, port_base=0))
+    try:
+        imu, pose = sim.by_name["robot.imu"].instance, sim.by_name["robot.pose"].instance
+        assert [c.fqn for c in sim.sensors].index("robot.imu") < [c.fqn for c in sim.sensors].index("robot.pose")
+        robot = imu.robot
+        tick = imu.default_action
+        moves = iter([lambda p, r: sim.place_body(robot.body_id, p, r), robot.set_pose] * 3)
+
+        def moving_tick():
+            tick()
+            position, rotation = robot.pose()
+            next(moves)(position + [0.5, 0.0, 0.0], rotation)
+
+        imu.default_action = moving_tick  # type: ignore[method-assign]
+        for _ in range(6):
+            sim.frame()
+            sim.answer()
+            data = pose.local_data
+            assert (data["x"], data["y"], data["z"]) == tuple(sim.data.xpos[pose.body_id].tolist())
+    finally:
+        sim.close()
+
+
 def test_gaussian_noise_draws_at_every_tick_and_is_added_when_read(build):
     """The IMU's noise, a deferrable modifier, draws its row at every tick (the same draws whether the data is
     read or not) and computes nothing; a read computes the last tick's data and adds that tick's noise."""

@@ -470,6 +470,7 @@ class World:
         m.body_pos[obj._body] = parent_rot.T @ (np.asarray(pos, float) - parent_pos)
         m.body_quat[obj._body] = matrix_to_quat(parent_rot.T @ np.asarray(rot, float))
         mujoco.mj_kinematics(m, d)
+        sim.poses_changed()
 
     def ray(self, start, target, dist: float, prop: str, xray: bool, ignored: GameObject):
         """(object, point, normal) of the first hit from `start` towards `target` within `dist` (0: up to the

@@ -99,6 +99,7 @@ class JointServos:
         d.qpos[self.qpos[which]] = values
         d.qvel[self.dof[which]] = 0.0
         mujoco.mj_kinematics(self.sim.model, d)
+        self.sim.poses_changed()
         setpoint = self.setpoint.copy()
         setpoint[which] = values
         self.command(setpoint)

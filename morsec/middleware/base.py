@@ -141,9 +141,9 @@ class Middleware:
         """Send what is queued (called every frame)."""
 
     def flushes(self) -> list[Callable[[], None]]:
-        """What the loop calls at each of its flushes (twice a frame, and while it waits), asked once the
-        endpoints are open: `flush`, or the flushes of the middleware's own servers, which saves a call at every
-        flush (the socket middleware's service server; none when it serves nothing)."""
+        """What the loop calls at each of its flushes (at the end of a frame, again after its answers, and while it
+        waits), asked once the endpoints are open: `flush`, or the flushes of the middleware's own servers, which
+        saves a call at every flush (the socket middleware's service server; none when it serves nothing)."""
         return [self.flush]
 
     def answer_anytime(self) -> None:

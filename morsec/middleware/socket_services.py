@@ -188,7 +188,7 @@ class ServiceServer(Server):
 
     def flush(self) -> None:
         """Serve the request lines that wait (a share of each client's), then send the answers that wait."""
-        if not self.clients and not self.leaving:  # nobody connected: nothing waits (twice a frame, usually)
+        if not self.clients and not self.leaving:  # nobody connected: nothing waits (at every frame, usually)
             return
         while self.leaving:
             self.drop(self.leaving.pop())

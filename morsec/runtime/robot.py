@@ -333,6 +333,7 @@ class RobotHandle:
         """Put the base at a world pose and stop it."""
         joint = (self.qpos_adr, self.qvel_adr) if self.qpos_adr is not None and self.qvel_adr is not None else None
         place_with(self.sim.model, self.sim.data, self.body_id, joint, pos, rot)
+        self.sim.poses_changed()
         self.stop()
 
     def base_qpos(self) -> np.ndarray:

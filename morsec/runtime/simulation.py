@@ -219,6 +219,7 @@ class Simulation:
         # data is read (component.body_position): one copy a frame where each sensor's tick read its own pose
         self._pose_views = (self.data.xpos.data, self.data.xmat.data)
         self.body_poses = self.copy_body_poses()
+        self._copy_poses = False  # whether a sensor reads them (set once the components started)
 
         try:
             self.robots = [self._robot(r) for r in manifest.robots]
@@ -663,6 +664,14 @@ class Simulation:
         place(self.model, self.data, body, pos, rot)
         if body in self.frozen:
             self.set_frozen(body, True)  # frozen where it was put
+        self.poses_changed()
+
+    def poses_changed(self) -> None:
+        """Bodies were moved outside the physics, their kinematics computed (a teleport, a service, a component's
+        tick): the copy of the bodies' poses taken again, for the sensors that tick after it in this frame (the
+        loop takes it anew at the next frame's sensors anyway)."""
+        if self._copy_poses:
+            self.body_poses = self.copy_body_poses()
 
     def pin(self, body: int) -> None:
         """Hold a body where it is through this frame's physics (a teleport: MORSE's sensors read the pose
