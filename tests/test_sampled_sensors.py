@@ -179,6 +179,12 @@ def test_a_sensor_that_moves_its_robot_is_seen_by_the_poses_that_tick_after_it(b
             sim.answer()
             data = pose.local_data
             assert (data["x"], data["y"], data["z"]) == tuple(sim.data.xpos[pose.body_id].tolist())
+        # moved between frames (a service, an actuator's teleport): no copy then, the next sensors take their own
+        copied = sim.body_poses
+        position, rotation = robot.pose()
+        robot.set_pose(position + [0.5, 0.0, 0.0], rotation)
+        sim.place_body(robot.body_id, position, rotation)
+        assert sim.body_poses is copied
     finally:
         sim.close()
 

@@ -220,6 +220,7 @@ class Simulation:
         self._pose_views = (self.data.xpos.data, self.data.xmat.data)
         self.body_poses = self.copy_body_poses()
         self._copy_poses = False  # whether a sensor reads them (set once the components started)
+        self._poses_read = False  # the sensors of this frame are ticking on the copy (poses_changed takes it again)
 
         try:
             self.robots = [self._robot(r) for r in manifest.robots]
@@ -668,9 +669,10 @@ class Simulation:
 
     def poses_changed(self) -> None:
         """Bodies were moved outside the physics, their kinematics computed (a teleport, a service, a component's
-        tick): the copy of the bodies' poses taken again, for the sensors that tick after it in this frame (the
-        loop takes it anew at the next frame's sensors anyway)."""
-        if self._copy_poses:
+        tick): while the frame's sensors tick, the copy of the bodies' poses is taken again for those that tick
+        after; at any other time nothing (the next frame's sensors take their own copy: a fleet's teleports
+        copy nothing)."""
+        if self._poses_read:
             self.body_poses = self.copy_body_poses()
 
     def pin(self, body: int) -> None:
@@ -983,6 +985,7 @@ class Simulation:
                     mujoco.mj_comVel(self.model, self.data)
                 if self._copy_poses:
                     self.body_poses = self.copy_body_poses()
+                    self._poses_read = True
                 now = clock.now()
             inst = comp.instance
             (inst.local_data if comp.stamp is None else comp.stamp)["timestamp"] = now
@@ -1013,6 +1016,7 @@ class Simulation:
                 continue
             if message is not None:
                 self.outbox.append((comp.send_rank, listening, message))
+        self._poses_read = False
 
     def close(self) -> None:
         view = getattr(self, "view", None)  # None: closed, or __init__ stopped before opening it
